@@ -1,0 +1,20 @@
+// Copyright (c) 2026  The Surface_mesh_multiresolution authors. All rights reserved.
+//
+// This file is part of Surface_mesh_multiresolution, an add-on package for CGAL.
+//
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s)     : The Surface_mesh_multiresolution authors
+#ifndef CGAL_SURFACE_MESH_MULTIRESOLUTION_H
+#define CGAL_SURFACE_MESH_MULTIRESOLUTION_H
+
+/// \file Surface_mesh_multiresolution.h
+/// Includes every public header of the package.
+
+#include <CGAL/Surface_mesh_multiresolution/parameters.h>
+#include <CGAL/Surface_mesh_multiresolution/Attribute_traits.h>
+#include <CGAL/Surface_mesh_multiresolution/Relaxation_scheme.h>
+#include <CGAL/Surface_mesh_multiresolution/Relaxation_operator.h>
+#include <CGAL/Surface_mesh_multiresolution/relax.h>
+
+#endif // CGAL_SURFACE_MESH_MULTIRESOLUTION_H

@@ -1,0 +1,102 @@
+// Copyright (c) 2026  The Surface_mesh_multiresolution authors. All rights reserved.
+//
+// This file is part of Surface_mesh_multiresolution, an add-on package for CGAL.
+//
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s)     : The Surface_mesh_multiresolution authors
+#ifndef CGAL_SURFACE_MESH_MULTIRESOLUTION_INTERNAL_SPARSE_WEIGHTS_H
+#define CGAL_SURFACE_MESH_MULTIRESOLUTION_INTERNAL_SPARSE_WEIGHTS_H
+
+#include <CGAL/Surface_mesh_multiresolution/internal/config.h>
+
+#include <cstddef>
+#include <vector>
+
+#ifdef CGAL_LINKED_WITH_TBB
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#endif
+
+namespace CGAL {
+namespace Surface_mesh_multiresolution {
+namespace internal {
+
+// Row-stochastic weights in compressed sparse rows: row i holds the pairs
+// (columns[k], values[k]) for offsets[i] <= k < offsets[i+1].
+struct Sparse_weights
+{
+  std::vector<Index> offsets{0};
+  std::vector<Index> columns;
+  std::vector<double> values;
+
+  std::size_t number_of_rows() const { return offsets.size() - 1; }
+  std::size_t number_of_entries() const { return columns.size(); }
+
+  void clear() { offsets.assign(1, 0); columns.clear(); values.clear(); }
+
+  // out[i] = sum_j w_ij in[j], where in/out hold `dimension` doubles per row. in != out.
+  void apply(const double* in, double* out, std::size_t dimension) const
+  {
+    const std::size_t n = number_of_rows();
+#ifdef CGAL_LINKED_WITH_TBB
+    // rows are independent: the result does not depend on the number of threads
+    if(n >= 20000)
+    {
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096),
+                        [&](const tbb::blocked_range<std::size_t>& r) { apply_rows(in, out, dimension, r.begin(), r.end()); });
+      return;
+    }
+#endif
+    apply_rows(in, out, dimension, 0, n);
+  }
+
+  void apply_rows(const double* in, double* out, std::size_t dimension, std::size_t first, std::size_t last) const
+  {
+    switch(dimension)
+    {
+      case 1: apply_fixed<1>(in, out, first, last); break;
+      case 2: apply_fixed<2>(in, out, first, last); break;
+      case 3: apply_fixed<3>(in, out, first, last); break;
+      case 4: apply_fixed<4>(in, out, first, last); break;
+      default:
+        for(std::size_t i = first; i < last; ++i)
+        {
+          double* o = out + i * dimension;
+          for(std::size_t c = 0; c < dimension; ++c) o[c] = 0.;
+          for(Index k = offsets[i]; k < offsets[i + 1]; ++k)
+          {
+            const double w = values[k];
+            const double* x = in + std::size_t(columns[k]) * dimension;
+            for(std::size_t c = 0; c < dimension; ++c) o[c] += w * x[c];
+          }
+        }
+    }
+  }
+
+private:
+  template <std::size_t D>
+  void apply_fixed(const double* in, double* out, std::size_t first, std::size_t last) const
+  {
+    const Index* off = offsets.data();
+    const Index* col = columns.data();
+    const double* val = values.data();
+    for(std::size_t i = first; i < last; ++i)
+    {
+      double acc[D] = {};
+      for(Index k = off[i]; k < off[i + 1]; ++k)
+      {
+        const double w = val[k];
+        const double* x = in + std::size_t(col[k]) * D;
+        for(std::size_t c = 0; c < D; ++c) acc[c] += w * x[c];
+      }
+      for(std::size_t c = 0; c < D; ++c) out[i * D + c] = acc[c];
+    }
+  }
+};
+
+} // namespace internal
+} // namespace Surface_mesh_multiresolution
+} // namespace CGAL
+
+#endif // CGAL_SURFACE_MESH_MULTIRESOLUTION_INTERNAL_SPARSE_WEIGHTS_H

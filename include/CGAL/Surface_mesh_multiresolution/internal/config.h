@@ -1,0 +1,43 @@
+// Copyright (c) 2026  The Surface_mesh_multiresolution authors. All rights reserved.
+//
+// This file is part of Surface_mesh_multiresolution, an add-on package for CGAL.
+//
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s)     : The Surface_mesh_multiresolution authors
+
+#ifndef CGAL_SURFACE_MESH_MULTIRESOLUTION_INTERNAL_CONFIG_H
+#define CGAL_SURFACE_MESH_MULTIRESOLUTION_INTERNAL_CONFIG_H
+
+#include <CGAL/config.h>
+#include <CGAL/version.h>
+
+#if CGAL_VERSION_NR < CGAL_VERSION_NUMBER(5,5,0)
+#error "Surface_mesh_multiresolution requires CGAL 5.5 or later"
+#endif
+
+#include <boost/optional.hpp>
+#include <cstdint>
+
+#define CGAL_SMR_VERSION_MAJOR 0
+#define CGAL_SMR_VERSION_MINOR 1
+#define CGAL_SMR_VERSION_PATCH 0
+
+namespace CGAL {
+namespace Surface_mesh_multiresolution {
+namespace internal {
+
+// The optional type of the SMS policy signatures: boost::optional up to CGAL 5.x,
+// std::optional in later CGAL sources.
+template <typename T>
+using Optional = boost::optional<T>;
+
+// Row/column indices of the index-based data (CSR weights, triangles). 32 bits halve
+// the memory traffic of the hot loops; meshes are limited to 2^32-1 vertices.
+typedef std::uint32_t Index;
+
+} // namespace internal
+} // namespace Surface_mesh_multiresolution
+} // namespace CGAL
+
+#endif // CGAL_SURFACE_MESH_MULTIRESOLUTION_INTERNAL_CONFIG_H

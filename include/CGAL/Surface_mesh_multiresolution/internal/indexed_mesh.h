@@ -1,0 +1,137 @@
+// Copyright (c) 2026  The Surface_mesh_multiresolution authors. All rights reserved.
+//
+// This file is part of Surface_mesh_multiresolution, an add-on package for CGAL.
+//
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s)     : The Surface_mesh_multiresolution authors
+#ifndef CGAL_SURFACE_MESH_MULTIRESOLUTION_INTERNAL_INDEXED_MESH_H
+#define CGAL_SURFACE_MESH_MULTIRESOLUTION_INTERNAL_INDEXED_MESH_H
+
+#include <CGAL/Surface_mesh_multiresolution/internal/config.h>
+
+#include <CGAL/boost/graph/iterator.h>
+#include <CGAL/boost/graph/properties.h>
+#include <CGAL/number_utils.h>
+
+#include <boost/graph/graph_traits.hpp>
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace CGAL {
+namespace Surface_mesh_multiresolution {
+namespace internal {
+
+constexpr Index invalid_index = (std::numeric_limits<Index>::max)();
+
+// The index view of a triangle mesh used by every hot loop of the package: vertices are
+// numbered 0..n-1 in the order of `vertices(tm)` ("rows"), faces are triples of rows in the
+// order and orientation of `faces(tm)`. Building it is the only halfedge traversal of a
+// relaxation; it also validates the input (DESIGN.md, section 4).
+template <typename TriangleMesh>
+struct Indexed_mesh
+{
+  typedef typename boost::graph_traits<TriangleMesh>::vertex_descriptor vertex_descriptor;
+
+  std::vector<vertex_descriptor> vertices;   // row -> vertex
+  std::vector<Index> triangles;              // 3 rows per face
+  std::vector<Index> row_of;                 // get(vim, v) -> row
+
+  std::size_t number_of_vertices() const { return vertices.size(); }
+  std::size_t number_of_faces() const { return triangles.size() / 3; }
+
+  template <typename VertexIndexMap>
+  Index row(vertex_descriptor v, VertexIndexMap vim) const { return row_of[static_cast<std::size_t>(get(vim, v))]; }
+};
+
+// Numbers the vertices and collects the triangles.
+// \throws std::invalid_argument when a face is not a triangle or repeats a vertex.
+template <typename TriangleMesh, typename VertexIndexMap>
+void build_indexed_mesh(const TriangleMesh& tm, VertexIndexMap vim, Indexed_mesh<TriangleMesh>& im)
+{
+  typedef typename boost::graph_traits<TriangleMesh>::vertex_descriptor   vertex_descriptor;
+  typedef typename boost::graph_traits<TriangleMesh>::halfedge_descriptor halfedge_descriptor;
+  typedef typename boost::graph_traits<TriangleMesh>::face_descriptor     face_descriptor;
+
+  im.vertices.clear();
+  im.triangles.clear();
+  const std::size_t nv = static_cast<std::size_t>(vertices(tm).size());
+  if(nv >= static_cast<std::size_t>(invalid_index))
+    throw std::invalid_argument("the mesh has too many vertices (at most 2^32-2 are supported)");
+  im.vertices.reserve(nv);
+  // num_vertices() bounds the index map's values (it also counts removed elements of a
+  // Surface_mesh that were not garbage-collected)
+  im.row_of.assign(static_cast<std::size_t>(num_vertices(tm)), invalid_index);
+  for(vertex_descriptor v : vertices(tm))
+  {
+    const std::size_t id = static_cast<std::size_t>(get(vim, v));
+    if(id >= im.row_of.size())
+      im.row_of.resize(id + 1, invalid_index);
+    im.row_of[id] = static_cast<Index>(im.vertices.size());
+    im.vertices.push_back(v);
+  }
+
+  im.triangles.reserve(3 * static_cast<std::size_t>(faces(tm).size()));
+  std::size_t face_number = 0;
+  for(face_descriptor f : faces(tm))
+  {
+    const halfedge_descriptor h0 = halfedge(f, tm);
+    const halfedge_descriptor h1 = next(h0, tm), h2 = next(h1, tm);
+    if(next(h2, tm) != h0)
+    {
+      std::size_t degree = 3;
+      for(halfedge_descriptor h = next(h2, tm); h != h0 && degree < 1000000; h = next(h, tm))
+        ++degree;
+      throw std::invalid_argument("face " + std::to_string(face_number) + " (in the order of faces(tm)) is not a triangle: it has "
+                                  + std::to_string(degree) + " vertices");
+    }
+    const Index a = im.row(source(h0, tm), vim), b = im.row(source(h1, tm), vim), c = im.row(source(h2, tm), vim);
+    if(a == b || b == c || c == a)
+      throw std::invalid_argument("face " + std::to_string(face_number) + " (in the order of faces(tm)) repeats a vertex");
+    im.triangles.push_back(a);
+    im.triangles.push_back(b);
+    im.triangles.push_back(c);
+    ++face_number;
+  }
+}
+
+// Writes the coordinates of the vertices, in the order of \`verts\`, as doubles.
+// \throws std::invalid_argument naming the first vertex with a non-finite coordinate.
+template <typename VertexDescriptor, typename VertexPointMap, typename GeomTraits>
+void read_coordinates(const std::vector<VertexDescriptor>& verts, VertexPointMap vpm, const GeomTraits& gt,
+                      std::vector<double>& xyz)
+{
+  const auto x = gt.compute_x_3_object();
+  const auto y = gt.compute_y_3_object();
+  const auto z = gt.compute_z_3_object();
+  xyz.resize(3 * verts.size());
+  for(std::size_t i = 0; i < verts.size(); ++i)
+  {
+    const auto& p = get(vpm, verts[i]);
+    double* out = xyz.data() + 3 * i;
+    out[0] = CGAL::to_double(x(p));
+    out[1] = CGAL::to_double(y(p));
+    out[2] = CGAL::to_double(z(p));
+    if(!(std::isfinite(out[0]) && std::isfinite(out[1]) && std::isfinite(out[2])))
+      throw std::invalid_argument("vertex " + std::to_string(i) + " (in the order of vertices(tm)) has a non-finite coordinate");
+  }
+}
+
+template <typename VertexDescriptor, typename VertexPointMap, typename GeomTraits>
+void write_coordinates(const std::vector<VertexDescriptor>& verts, VertexPointMap vpm, const GeomTraits& gt,
+                       const std::vector<double>& xyz)
+{
+  const auto point = gt.construct_point_3_object();
+  for(std::size_t i = 0; i < verts.size(); ++i)
+    put(vpm, verts[i], point(xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]));
+}
+
+} // namespace internal
+} // namespace Surface_mesh_multiresolution
+} // namespace CGAL
+
+#endif // CGAL_SURFACE_MESH_MULTIRESOLUTION_INTERNAL_INDEXED_MESH_H
