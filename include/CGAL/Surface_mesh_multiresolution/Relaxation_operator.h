@@ -47,19 +47,14 @@ template <typename TriangleMesh>
 class Relaxation_operator
 {
 public:
-  /// \name Types
-  /// @{
   /// the mesh type
   typedef TriangleMesh Triangle_mesh;
   /// the vertex descriptor of the mesh
   typedef typename boost::graph_traits<TriangleMesh>::vertex_descriptor vertex_descriptor;
-  /// @}
 
   /// creates an empty operator (no rows)
   Relaxation_operator() = default;
 
-  /// \name Access
-  /// @{
   /// the scheme that produced the weights
   Relaxation_scheme scheme() const { return m_scheme; }
   /// the number of rows, that is of vertices
@@ -79,10 +74,7 @@ public:
   /// the number of rows produced by `rule`
   std::size_t number_of_rows_with_rule(Relaxation_row_rule rule) const
   { return static_cast<std::size_t>(std::count(m_rules.begin(), m_rules.end(), rule)); }
-  /// @}
 
-  /// \name Application
-  /// @{
   /*!
    * computes `out` \f$ = R\f$ `in` where `in` and `out` hold `dimension` doubles per row,
    * rows in the order of `vertices()`. `in` and `out` must not overlap.
@@ -118,7 +110,7 @@ public:
    * the geometry (unless \`relax_geometry(false)\`) and every map of \`vertex_attribute_maps\`,
    * \`number_of_iterations\` times. The weights are not recomputed; \`relax()\` recomputes them.
    *
-   * \tparam NamedParameters a sequence of \\ref bgl_namedparameters "Named Parameters"
+   * \tparam NamedParameters a sequence of \\ref smr_namedparameters "Named Parameters"
    * \param tm the mesh the operator was built on (same vertices, in the same order)
    * \param np the parameters \`relax_geometry\`, \`vertex_attribute_maps\`, \`number_of_iterations\`,
    *        \`vertex_point_map\` and \`geom_traits\`, as documented for \`relax()\`
@@ -161,7 +153,6 @@ public:
     if(attribute_dimension > 0)
       internal::write_channels(maps, m_vertices, attributes);
   }
-  /// @}
 
   /// \cond SKIP_IN_MANUAL
   internal::Sparse_weights& sparse_weights() { return m_weights; }

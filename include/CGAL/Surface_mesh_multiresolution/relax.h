@@ -79,14 +79,14 @@ struct Relaxation_setup
  * applied any number of times to any channel with `Relaxation_operator::apply()`.
  *
  * \tparam TriangleMesh a model of `FaceListGraph`
- * \tparam NamedParameters a sequence of \ref bgl_namedparameters "Named Parameters"
+ * \tparam NamedParameters a sequence of \ref smr_namedparameters "Named Parameters"
  * \param tm a triangle mesh; borders, several components, isolated vertices and degenerate
  *        triangles are valid (see the user manual, "Robustness rules")
- * \param np an optional sequence of \ref bgl_namedparameters "Named Parameters" among the ones listed below
+ * \param np an optional sequence of \ref smr_namedparameters "Named Parameters" among the ones listed below
  *
  * \cgalNamedParamsBegin
  *   \cgalParamNBegin{relaxation_scheme}
- *     \cgalParamDescription{the weights: normalised cotangents (Eq. 2), second-order differences (Eq. 1) or uniform}
+ *     \cgalParamDescription{the weights: normalised cotangents (Eq. 2)\, second-order differences (Eq. 1) or uniform}
  *     \cgalParamType{`CGAL::Surface_mesh_multiresolution::Relaxation_scheme`}
  *     \cgalParamDefault{`Relaxation_scheme::CURVATURE`}
  *   \cgalParamNEnd
@@ -94,7 +94,7 @@ struct Relaxation_setup
  *     \cgalParamDescription{a property map associating points to the vertices of `tm`}
  *     \cgalParamType{a class model of `ReadablePropertyMap` with `boost::graph_traits<TriangleMesh>::%vertex_descriptor`
  *                    as key type and `%Point_3` as value type}
- *     \cgalParamDefault{`boost::get(CGAL::vertex_point, tm)`}
+ *     \cgalParamDefault{`boost::get(CGAL::vertex_point\, tm)`}
  *   \cgalParamNEnd
  *   \cgalParamNBegin{geom_traits}
  *     \cgalParamDescription{an instance of a geometric traits class}
@@ -145,9 +145,9 @@ relaxation_operator(const TriangleMesh& tm, const NamedParameters& np = paramete
  * relaxed together with the geometry use the weights of the same iteration.
  *
  * \tparam TriangleMesh a model of `FaceListGraph`
- * \tparam NamedParameters a sequence of \ref bgl_namedparameters "Named Parameters"
+ * \tparam NamedParameters a sequence of \ref smr_namedparameters "Named Parameters"
  * \param tm a triangle mesh
- * \param np an optional sequence of \ref bgl_namedparameters "Named Parameters": the ones of
+ * \param np an optional sequence of \ref smr_namedparameters "Named Parameters": the ones of
  *        `relaxation_operator()` and those listed below
  *
  * \cgalNamedParamsBegin
@@ -162,13 +162,25 @@ relaxation_operator(const TriangleMesh& tm, const NamedParameters& np = paramete
  *     \cgalParamDefault{`true`}
  *   \cgalParamNEnd
  *   \cgalParamNBegin{vertex_attribute_maps}
- *     \cgalParamDescription{the attribute channels to relax, e.g. `std::make_tuple(color_map, uv_map)`; a single map is accepted too}
+ *     \cgalParamDescription{the attribute channels to relax\, e.g. `std::make_tuple(color_map\, uv_map)`; a single map is accepted too}
  *     \cgalParamType{a `std::tuple` of class models of `ReadWritePropertyMap` with `boost::graph_traits<TriangleMesh>::%vertex_descriptor`
  *                    as key type and a value type for which `Attribute_traits` is specialised}
  *     \cgalParamDefault{no attribute channel}
  *   \cgalParamNEnd
- *   \cgalParamNBegin{relaxation_scheme, vertex_point_map, geom_traits, vertex_is_constrained_map, vertex_index_map}
- *     \cgalParamDescription{as for `relaxation_operator()`; the vertex point map must be writable}
+ *   \cgalParamNBegin{relaxation_scheme}
+ *     \cgalParamDescription{as for `relaxation_operator()`}
+ *   \cgalParamNEnd
+ *   \cgalParamNBegin{vertex_point_map}
+ *     \cgalParamDescription{as for `relaxation_operator()`; the map must be writable}
+ *   \cgalParamNEnd
+ *   \cgalParamNBegin{geom_traits}
+ *     \cgalParamDescription{as for `relaxation_operator()`}
+ *   \cgalParamNEnd
+ *   \cgalParamNBegin{vertex_is_constrained_map}
+ *     \cgalParamDescription{as for `relaxation_operator()`: constrained vertices keep their position and values}
+ *   \cgalParamNEnd
+ *   \cgalParamNBegin{vertex_index_map}
+ *     \cgalParamDescription{as for `relaxation_operator()`}
  *   \cgalParamNEnd
  * \cgalNamedParamsEnd
  *

@@ -1,0 +1,19 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
+# The main job: installs what is missing, builds the examples and runs the demo on a real
+# mesh of CGAL's data set (or the mesh given as first argument), writing results to out/.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/install_dependencies.sh
+BUILD=${SMR_BUILD_DIR:-build}
+cmake -S . -B "$BUILD" -DCMAKE_BUILD_TYPE=Release > /dev/null
+cmake --build "$BUILD" -j"$(nproc)" --target relax_geometry relax_colors
+ROOT=$PWD
+mkdir -p out && cd out
+echo "== Relaxation operators (Roy et al., Fig. 2): one step of each scheme =="
+"$ROOT/$BUILD/examples/Surface_mesh_multiresolution/relax_geometry" "$@"
+echo
+echo "== Colour relaxation (Fig. 3): weights from the geometry, applied to colours =="
+"$ROOT/$BUILD/examples/Surface_mesh_multiresolution/relax_colors"
+echo
+echo "Results written to $ROOT/out: $(ls | tr '\n' ' ')"
