@@ -1,0 +1,20 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
+# Builds the benchmarks (Release) and runs them on the paper's meshes when ../shared/data is
+# present (decompressed into the build folder), else on CGAL's largest data meshes.
+set -euo pipefail
+ROOT="$(cd "$(dirname "$0")/../.." && pwd)"
+BUILD=${SMR_BENCH_BUILD_DIR:-$ROOT/build-bench}
+bash "$ROOT/scripts/install_dependencies.sh"
+cmake -S "$ROOT" -B "$BUILD" -DCMAKE_BUILD_TYPE=Release -DSMR_BUILD_BENCHMARKS=ON -DSMR_BUILD_TESTS=OFF -DSMR_BUILD_EXAMPLES=OFF > /dev/null
+cmake --build "$BUILD" -j"$(nproc)" --target bench_relaxation
+DATA="$ROOT/../shared/data"
+files=()
+if [ -d "$DATA" ]; then
+  mkdir -p "$BUILD/data"
+  for f in bun_zipper.ply horse.ply dragon_vrip.ply; do
+    [ -f "$BUILD/data/$f" ] || xz -dc "$DATA/$f.xz" > "$BUILD/data/$f"
+    files+=("$BUILD/data/$f")
+  done
+fi
+"$BUILD/benchmark/Surface_mesh_multiresolution/bench_relaxation" "${files[@]}"
