@@ -9,14 +9,11 @@
 #define CGAL_SURFACE_MESH_MULTIRESOLUTION_INTERNAL_SPARSE_WEIGHTS_H
 
 #include <CGAL/Surface_mesh_multiresolution/internal/config.h>
+#include <CGAL/Surface_mesh_multiresolution/internal/parallel.h>
 
 #include <cstddef>
 #include <vector>
 
-#ifdef CGAL_LINKED_WITH_TBB
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-#endif
 
 namespace CGAL {
 namespace Surface_mesh_multiresolution {
@@ -38,17 +35,8 @@ struct Sparse_weights
   // out[i] = sum_j w_ij in[j], where in/out hold `dimension` doubles per row. in != out.
   void apply(const double* in, double* out, std::size_t dimension) const
   {
-    const std::size_t n = number_of_rows();
-#ifdef CGAL_LINKED_WITH_TBB
     // rows are independent: the result does not depend on the number of threads
-    if(n >= 20000)
-    {
-      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096),
-                        [&](const tbb::blocked_range<std::size_t>& r) { apply_rows(in, out, dimension, r.begin(), r.end()); });
-      return;
-    }
-#endif
-    apply_rows(in, out, dimension, 0, n);
+    parallel_for_blocks(number_of_rows(), [&](std::size_t first, std::size_t last) { apply_rows(in, out, dimension, first, last); });
   }
 
   void apply_rows(const double* in, double* out, std::size_t dimension, std::size_t first, std::size_t last) const

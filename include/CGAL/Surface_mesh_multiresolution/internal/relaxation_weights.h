@@ -10,6 +10,7 @@
 
 #include <CGAL/Surface_mesh_multiresolution/internal/config.h>
 #include <CGAL/Surface_mesh_multiresolution/internal/indexed_mesh.h>
+#include <CGAL/Surface_mesh_multiresolution/internal/parallel.h>
 #include <CGAL/Surface_mesh_multiresolution/internal/Sparse_weights.h>
 #include <CGAL/Surface_mesh_multiresolution/Relaxation_scheme.h>
 
@@ -46,73 +47,127 @@ enum class Relaxation_row_rule : unsigned char
 
 namespace internal {
 
-// Connectivity of an indexed triangle mesh needed by the weights, computed once per
-// connectivity from the triangle array alone (no halfedge walk): sorted 1-rings in CSR,
-// the CSR slot of every directed face edge and of its twin, and the faces on each edge.
-struct One_ring_topology
+// Index-based halfedge structure of a triangle mesh, built from its triangle array alone
+// (no walk on the mesh): halfedge 3f+k goes from corner k to corner k+1 of face f; the
+// halfedges of border edges that have no face are numbered after them. The outgoing
+// halfedges of every vertex are listed in CSR (in face order, so deterministic), with
+// their targets: the 1-ring of each vertex.
+// Why by hand: the weights of every level of a pyramid need twins, next and 1-rings on
+// contiguous arrays; walking a FaceGraph's halfedges (or a hash of edges) is several times
+// slower than this counting sort.
+struct Triangle_halfedges
 {
-  std::size_t n = 0;
-  std::vector<Index> offsets, neighbors;     // 1-ring of each row, sorted
-  std::vector<Index> corner_slot;            // 3F: slot of b in row a for the face edge a->b
-  std::vector<Index> corner_twin;            // 3F: slot of a in row b
-  std::vector<Index> slot_opposite;          // per slot (a,b): third vertex of the face holding a->b, or invalid
-  std::vector<unsigned char> slot_faces;     // per slot: number of faces on the undirected edge (1: border)
+  std::size_t n = 0, nf = 0;
+  std::vector<Index> source, target, twin;     // per halfedge
+  std::vector<Index> out_offsets, out, out_target;
 
-  Index slot(Index a, Index b) const
-  {
-    const Index* first = neighbors.data() + offsets[a];
-    const Index* last = neighbors.data() + offsets[a + 1];
-    const Index* it = std::lower_bound(first, last, b);
-    CGAL_assertion(it != last && *it == b);
-    return static_cast<Index>(it - neighbors.data());
-  }
+  std::size_t number_of_halfedges() const { return target.size(); }
+  static Index next_in_face(Index h) { return h % 3 == 2 ? h - 2 : h + 1; }
+  bool has_face(Index h) const { return h < 3 * nf; }
+  bool is_border_edge(Index h) const { return !has_face(h) || !has_face(twin[h]); }
+  // the third vertex of the face of h (h must have a face)
+  Index opposite_vertex(Index h) const { return target[next_in_face(h)]; }
 
-  bool is_border_slot(Index s) const { return slot_faces[s] < 2; }
-
-  void build(std::size_t nv, const std::vector<Index>& triangles)
+  void build(std::size_t nv, const std::vector<Index>& tri)
   {
     n = nv;
-    const std::size_t nf = triangles.size() / 3;
-    // counting sort of both directions of every face edge, then sort + unique per row
-    std::vector<Index> start(n + 1, 0);
-    for(std::size_t k = 0; k < 3 * nf; ++k)
-      start[triangles[k] + 1] += 2;
-    for(std::size_t i = 0; i < n; ++i)
-      start[i + 1] += start[i];
-    std::vector<Index> fill(start.begin(), start.end() - 1), raw(start[n]);
-    for(std::size_t f = 0; f < nf; ++f)
-      for(int k = 0; k < 3; ++k)
+    nf = tri.size() / 3;
+    const Index h0 = static_cast<Index>(3 * nf);
+    source.resize(h0);
+    target.resize(h0);
+    parallel_for_blocks(h0, [&](std::size_t first, std::size_t last) {
+      for(std::size_t h = first; h < last; ++h)
       {
-        const Index a = triangles[3 * f + k], b = triangles[3 * f + (k + 1) % 3];
-        raw[fill[a]++] = b;
-        raw[fill[b]++] = a;
+        source[h] = tri[h];
+        target[h] = tri[next_in_face(static_cast<Index>(h))];
       }
-    offsets.assign(n + 1, 0);
-    neighbors.clear();
-    neighbors.reserve(raw.size() / 2 + n);
+    });
+    // outgoing face halfedges of each vertex (counting sort by source), with their targets
+    std::vector<Index> off(n + 1, 0), face_out(h0), face_out_target(h0);
+    for(Index h = 0; h < h0; ++h)
+      ++off[source[h] + 1];
+    for(std::size_t i = 0; i < n; ++i)
+      off[i + 1] += off[i];
+    {
+      std::vector<Index> fill(off.begin(), off.end() - 1);
+      for(Index h = 0; h < h0; ++h)
+      {
+        const Index k = fill[source[h]]++;
+        face_out[k] = h;
+        face_out_target[k] = target[h];
+      }
+    }
+    // twin of a -> b: b's outgoing halfedge towards a. Each halfedge looks for its own twin
+    // (parallel); on a mesh where an edge would be matched twice (not possible for a valid
+    // halfedge mesh) the pairing is redone sequentially, first come first served.
+    twin.resize(h0);
+    parallel_for_blocks(h0, [&](std::size_t first, std::size_t last) {
+      for(std::size_t h = first; h < last; ++h)
+      {
+        const Index a = source[h], b = target[h];
+        Index t = invalid_index;
+        for(Index k = off[b]; k < off[b + 1]; ++k)
+          if(face_out_target[k] == a) { t = face_out[k]; break; }
+        twin[h] = t;
+      }
+    });
+    bool symmetric = true;
+    for(Index h = 0; h < h0 && symmetric; ++h)
+      symmetric = (twin[h] == invalid_index || twin[twin[h]] == h);
+    if(!symmetric)
+    {
+      std::fill(twin.begin(), twin.end(), invalid_index);
+      for(Index h = 0; h < h0; ++h)
+      {
+        if(twin[h] != invalid_index)
+          continue;
+        const Index a = source[h], b = target[h];
+        for(Index k = off[b]; k < off[b + 1]; ++k)
+          if(face_out_target[k] == a && twin[face_out[k]] == invalid_index)
+          {
+            twin[h] = face_out[k];
+            twin[face_out[k]] = h;
+            break;
+          }
+      }
+    }
+    std::vector<Index> extra(n + 1, 0);
+    for(Index h = 0; h < h0; ++h)
+      if(twin[h] == invalid_index)
+        ++extra[target[h] + 1];                      // target(h) needs a border halfedge towards source(h)
+    // rows: the face halfedges, then the border halfedges
+    if(extra[n] == 0)                                // closed mesh: the rows are the face halfedges
+    {
+      out_offsets.swap(off);
+      out.swap(face_out);
+      out_target.swap(face_out_target);
+      return;
+    }
+    out_offsets.assign(n + 1, 0);
     for(std::size_t i = 0; i < n; ++i)
     {
-      Index* first = raw.data() + start[i];
-      Index* last = raw.data() + start[i + 1];
-      std::sort(first, last);
-      last = std::unique(first, last);
-      neighbors.insert(neighbors.end(), first, last);
-      offsets[i + 1] = static_cast<Index>(neighbors.size());
+      extra[i + 1] += extra[i];
+      out_offsets[i + 1] = off[i + 1] + extra[i + 1];
     }
-    corner_slot.resize(3 * nf);
-    corner_twin.resize(3 * nf);
-    slot_opposite.assign(neighbors.size(), invalid_index);
-    slot_faces.assign(neighbors.size(), 0);
-    for(std::size_t f = 0; f < nf; ++f)
-      for(int k = 0; k < 3; ++k)
+    out.resize(out_offsets[n]);
+    out_target.resize(out_offsets[n]);
+    std::vector<Index> fill(n);
+    for(std::size_t i = 0; i < n; ++i)
+    {
+      std::copy(face_out.begin() + off[i], face_out.begin() + off[i + 1], out.begin() + out_offsets[i]);
+      std::copy(face_out_target.begin() + off[i], face_out_target.begin() + off[i + 1], out_target.begin() + out_offsets[i]);
+      fill[i] = out_offsets[i] + (off[i + 1] - off[i]);
+    }
+    for(Index h = 0; h < h0; ++h)
+      if(twin[h] == invalid_index)
       {
-        const Index a = triangles[3 * f + k], b = triangles[3 * f + (k + 1) % 3], c = triangles[3 * f + (k + 2) % 3];
-        const Index s = slot(a, b), t = slot(b, a);
-        corner_slot[3 * f + k] = s;
-        corner_twin[3 * f + k] = t;
-        slot_opposite[s] = c;
-        ++slot_faces[s];
-        ++slot_faces[t];
+        const Index g = static_cast<Index>(target.size());
+        source.push_back(target[h]);
+        target.push_back(source[h]);
+        twin.push_back(h);
+        twin[h] = g;
+        out_target[fill[source[g]]] = target[g];
+        out[fill[source[g]]++] = g;
       }
   }
 };
@@ -170,68 +225,117 @@ public:
   void set_connectivity(std::size_t n, const std::vector<Index>& triangles)
   {
     m_triangles = &triangles;
-    m_topology.build(n, triangles);
-    m_hinges.clear();
-    m_hinge_pattern_built = false;
+    m_mesh.build(n, triangles);
   }
 
-  const One_ring_topology& topology() const { return m_topology; }
+  const Triangle_halfedges& halfedges() const { return m_mesh; }
 
   // xyz: 3 doubles per row; fixed: nullptr or one flag per row (constrained vertices)
   void build(Relaxation_scheme scheme, const double* xyz, const unsigned char* fixed,
              Sparse_weights& w, std::vector<Relaxation_row_rule>& rules)
   {
-    const std::size_t n = m_topology.n;
-    w.clear();
-    w.columns.reserve(scheme == Relaxation_scheme::SECOND_ORDER_DIFFERENCE ? 3 * m_topology.neighbors.size()
-                                                                            : m_topology.neighbors.size());
-    w.values.reserve(w.columns.capacity());
-    w.offsets.reserve(n + 1);
-    rules.assign(n, Relaxation_row_rule::SCHEME);
-
+    const std::size_t n = m_mesh.n;
+    rules.resize(n);
+    w.offsets.resize(n + 1);
+    w.offsets[0] = 0;
     if(scheme != Relaxation_scheme::UNIFORM)
-      accumulate_cotangents(xyz);
-    if(scheme == Relaxation_scheme::SECOND_ORDER_DIFFERENCE)
-      accumulate_second_order_differences(xyz);
+      compute_cotangents(xyz);
 
+    if(scheme != Relaxation_scheme::SECOND_ORDER_DIFFERENCE)
+    {
+      // two passes over independent rows (parallel): the length of every row, then the rows
+      parallel_for_blocks(n, [&](std::size_t first, std::size_t last) {
+        for(std::size_t i = first; i < last; ++i)
+        {
+          rules[i] = structural_rule(i, fixed);
+          w.offsets[i + 1] = static_cast<Index>(row_length(i, rules[i]));
+        }
+      });
+      for(std::size_t i = 0; i < n; ++i)
+        w.offsets[i + 1] += w.offsets[i];
+      w.columns.resize(w.offsets[n]);
+      w.values.resize(w.offsets[n]);
+      parallel_for_blocks(n, [&](std::size_t first, std::size_t last) {
+        for(std::size_t i = first; i < last; ++i)
+        {
+          Index* col = w.columns.data() + w.offsets[i];
+          double* val = w.values.data() + w.offsets[i];
+          if(rules[i] == Relaxation_row_rule::FIXED)
+          {
+            *col = static_cast<Index>(i);
+            *val = 1.;
+          }
+          else if(rules[i] == Relaxation_row_rule::BORDER)
+            border_row(scheme, i, xyz, col, val);
+          else if(scheme == Relaxation_scheme::UNIFORM)
+            uniform_row(i, col, val);
+          else
+            rules[i] = curvature_row(i, col, val);
+        }
+      });
+      return;
+    }
+
+    // SOD rows have lengths known only once assembled: one sequential pass into an upper bound
+    compute_hinge_coefficients(xyz);
+    const std::size_t capacity = 3 * m_mesh.out.size() + n;
+    w.columns.resize(capacity);
+    w.values.resize(capacity);
+    std::size_t size = 0;
     for(std::size_t i = 0; i < n; ++i)
     {
-      const Index b = m_topology.offsets[i], e = m_topology.offsets[i + 1];
-      if(b == e || (fixed != nullptr && fixed[i]))
+      Index* col = w.columns.data() + size;
+      double* val = w.values.data() + size;
+      Relaxation_row_rule rule = structural_rule(i, fixed);
+      std::size_t length = 0;
+      if(rule == Relaxation_row_rule::FIXED)
       {
-        push(w, static_cast<Index>(i), 1.);
-        rules[i] = Relaxation_row_rule::FIXED;
+        *col = static_cast<Index>(i);
+        *val = 1.;
+        length = 1;
       }
-      else if(is_border_vertex(i))
+      else if(rule == Relaxation_row_rule::BORDER)
+        length = border_row(scheme, i, xyz, col, val);
+      else if(!(length = sod_row(i, col, val)))
       {
-        border_row(scheme, i, xyz, w);
-        rules[i] = Relaxation_row_rule::BORDER;
+        rule = curvature_row(i, col, val);
+        if(rule == Relaxation_row_rule::SCHEME)
+          rule = Relaxation_row_rule::CURVATURE_FALLBACK;
+        length = row_length(i, rule);
       }
-      else if(scheme == Relaxation_scheme::UNIFORM)
-        uniform_row(i, w);
-      else if(scheme == Relaxation_scheme::CURVATURE)
-        rules[i] = curvature_row(i, w);
-      else
-      {
-        if(!sod_row(i, w))
-        {
-          const Relaxation_row_rule r = curvature_row(i, w);
-          rules[i] = (r == Relaxation_row_rule::SCHEME) ? Relaxation_row_rule::CURVATURE_FALLBACK : r;
-        }
-      }
-      w.offsets.push_back(static_cast<Index>(w.columns.size()));
+      rules[i] = rule;
+      size += length;
+      w.offsets[i + 1] = static_cast<Index>(size);
     }
+    w.columns.resize(size);
+    w.values.resize(size);
   }
 
 private:
-  static void push(Sparse_weights& w, Index j, double v) { w.columns.push_back(j); w.values.push_back(v); }
+  Index degree(std::size_t i) const { return m_mesh.out_offsets[i + 1] - m_mesh.out_offsets[i]; }
 
-  bool is_border_vertex(std::size_t i) const
+  // FIXED, BORDER, or SCHEME for the rows whose weights depend on the scheme
+  Relaxation_row_rule structural_rule(std::size_t i, const unsigned char* fixed) const
   {
-    for(Index s = m_topology.offsets[i]; s < m_topology.offsets[i + 1]; ++s)
-      if(m_topology.is_border_slot(s))
-        return true;
-    return false;
+    if(degree(i) == 0 || (fixed != nullptr && fixed[i]))
+      return Relaxation_row_rule::FIXED;
+    for(Index k = m_mesh.out_offsets[i]; k < m_mesh.out_offsets[i + 1]; ++k)
+      if(m_mesh.is_border_edge(m_mesh.out[k]))
+        return Relaxation_row_rule::BORDER;
+    return Relaxation_row_rule::SCHEME;
+  }
+
+  // length of a row of the 1-ring schemes (curvature and its fallbacks, uniform)
+  std::size_t row_length(std::size_t i, Relaxation_row_rule rule) const
+  {
+    if(rule == Relaxation_row_rule::FIXED)
+      return 1;
+    if(rule != Relaxation_row_rule::BORDER)
+      return degree(i);
+    std::size_t count = 0;
+    for(Index k = m_mesh.out_offsets[i]; k < m_mesh.out_offsets[i + 1]; ++k)
+      count += m_mesh.is_border_edge(m_mesh.out[k]) ? 1 : 0;
+    return count;
   }
 
   static double clamped_cotangent(double dot, double double_area)
@@ -244,69 +348,81 @@ private:
     return dot > 0. ? max_cotangent : (dot < 0. ? -max_cotangent : 0.);
   }
 
-  // m_slot_weight[s] = cot(alpha) + cot(beta) for the edge of slot s (one term on border edges)
-  void accumulate_cotangents(const double* xyz)
+  // m_cotangent[h] = cotangent of the angle opposite the face halfedge h in its face
+  void compute_cotangents(const double* xyz)
   {
     const std::vector<Index>& tri = *m_triangles;
-    const std::size_t nf = tri.size() / 3;
-    m_slot_weight.assign(m_topology.neighbors.size(), 0.);
-    for(std::size_t f = 0; f < nf; ++f)
-    {
-      const double* p[3] = {xyz + 3 * std::size_t(tri[3 * f]), xyz + 3 * std::size_t(tri[3 * f + 1]),
-                            xyz + 3 * std::size_t(tri[3 * f + 2])};
-      double e[3][3];   // e[k] = p[k+1] - p[k]
-      for(int k = 0; k < 3; ++k)
-        for(int c = 0; c < 3; ++c)
-          e[k][c] = p[(k + 1) % 3][c] - p[k][c];
-      const double cx = e[0][1] * e[2][2] - e[0][2] * e[2][1];
-      const double cy = e[0][2] * e[2][0] - e[0][0] * e[2][2];
-      const double cz = e[0][0] * e[2][1] - e[0][1] * e[2][0];
-      const double double_area = std::sqrt(cx * cx + cy * cy + cz * cz);   // shared by the three angles
-      for(int k = 0; k < 3; ++k)
+    m_cotangent.resize(3 * m_mesh.nf);
+    parallel_for_blocks(m_mesh.nf, [&](std::size_t first, std::size_t last) {
+      for(std::size_t f = first; f < last; ++f)
       {
-        // angle at corner k+2, opposite the edge p[k] -> p[k+1]: between -e[k+1] and e[k+2]
-        const double* u = e[(k + 1) % 3];
-        const double* v = e[(k + 2) % 3];
-        const double dot = -(u[0] * v[0] + u[1] * v[1] + u[2] * v[2]);
-        const double cot = clamped_cotangent(dot, double_area);
-        m_slot_weight[m_topology.corner_slot[3 * f + k]] += cot;
-        m_slot_weight[m_topology.corner_twin[3 * f + k]] += cot;
+        const double* p[3] = {xyz + 3 * std::size_t(tri[3 * f]), xyz + 3 * std::size_t(tri[3 * f + 1]),
+                              xyz + 3 * std::size_t(tri[3 * f + 2])};
+        double e[3][3];   // e[k] = p[k+1] - p[k]
+        for(int k = 0; k < 3; ++k)
+          for(int c = 0; c < 3; ++c)
+            e[k][c] = p[(k + 1) % 3][c] - p[k][c];
+        const double cx = e[0][1] * e[2][2] - e[0][2] * e[2][1];
+        const double cy = e[0][2] * e[2][0] - e[0][0] * e[2][2];
+        const double cz = e[0][0] * e[2][1] - e[0][1] * e[2][0];
+        const double double_area = std::sqrt(cx * cx + cy * cy + cz * cz);   // shared by the three angles
+        for(int k = 0; k < 3; ++k)
+        {
+          // angle at corner k+2, opposite the halfedge p[k] -> p[k+1]: between -e[k+1] and e[k+2]
+          const double* u = e[(k + 1) % 3];
+          const double* v = e[(k + 2) % 3];
+          m_cotangent[3 * f + k] = clamped_cotangent(-(u[0] * v[0] + u[1] * v[1] + u[2] * v[2]), double_area);
+        }
       }
-    }
+    });
   }
 
-  void uniform_row(std::size_t i, Sparse_weights& w) const
+  double edge_cotangent_weight(Index h) const
   {
-    const Index b = m_topology.offsets[i], e = m_topology.offsets[i + 1];
+    const Index t = m_mesh.twin[h];
+    return (m_mesh.has_face(h) ? m_cotangent[h] : 0.) + (m_mesh.has_face(t) ? m_cotangent[t] : 0.);
+  }
+
+  std::size_t uniform_row(std::size_t i, Index* col, double* val) const
+  {
+    const Index b = m_mesh.out_offsets[i], e = m_mesh.out_offsets[i + 1];
     const double v = 1. / double(e - b);
-    for(Index s = b; s < e; ++s)
-      push(w, m_topology.neighbors[s], v);
+    for(Index k = b; k < e; ++k)
+    {
+      *col++ = m_mesh.out_target[k];
+      *val++ = v;
+    }
+    return e - b;
   }
 
-  Relaxation_row_rule curvature_row(std::size_t i, Sparse_weights& w) const
+  // writes degree(i) entries
+  Relaxation_row_rule curvature_row(std::size_t i, Index* col, double* val) const
   {
-    const Index b = m_topology.offsets[i], e = m_topology.offsets[i + 1];
+    const Index b = m_mesh.out_offsets[i], e = m_mesh.out_offsets[i + 1];
+    const std::size_t d = e - b;
     double positive = 0., negative = 0.;
-    for(Index s = b; s < e; ++s)
+    for(std::size_t k = 0; k < d; ++k)
     {
-      const double x = m_slot_weight[s];
+      const double x = edge_cotangent_weight(m_mesh.out[b + k]);
       if(x > 0.) positive += x; else negative -= x;
+      col[k] = m_mesh.out_target[b + k];
+      val[k] = x;
     }
     if(positive > 0. && negative <= max_negative_ratio * positive)
     {
       const double inv = 1. / (positive - negative);
-      for(Index s = b; s < e; ++s)
-        push(w, m_topology.neighbors[s], m_slot_weight[s] * inv);
+      for(std::size_t k = 0; k < d; ++k)
+        val[k] *= inv;
       return Relaxation_row_rule::SCHEME;
     }
     if(positive > 0.)
     {
       const double inv = 1. / positive;
-      for(Index s = b; s < e; ++s)
-        push(w, m_topology.neighbors[s], m_slot_weight[s] > 0. ? m_slot_weight[s] * inv : 0.);
+      for(std::size_t k = 0; k < d; ++k)
+        val[k] = val[k] > 0. ? val[k] * inv : 0.;
       return Relaxation_row_rule::CLAMPED_CURVATURE;
     }
-    uniform_row(i, w);
+    uniform_row(i, col, val);
     return Relaxation_row_rule::UNIFORM_FALLBACK;
   }
 
@@ -314,135 +430,118 @@ private:
   // inversely proportional to the edge lengths (linear interpolation by arc length, which
   // reproduces straight borders; this is also the minimiser of the curve's second-order
   // difference at the vertex), uniform for the UNIFORM scheme or when an edge has zero length.
-  void border_row(Relaxation_scheme scheme, std::size_t i, const double* xyz, Sparse_weights& w) const
+  std::size_t border_row(Relaxation_scheme scheme, std::size_t i, const double* xyz, Index* col, double* val) const
   {
-    const Index b = m_topology.offsets[i], e = m_topology.offsets[i + 1];
-    const std::size_t first = w.columns.size();
+    std::size_t count = 0;
     double total = 0.;
     bool uniform = (scheme == Relaxation_scheme::UNIFORM);
-    for(Index s = b; s < e; ++s)
+    for(Index k = m_mesh.out_offsets[i]; k < m_mesh.out_offsets[i + 1]; ++k)
     {
-      if(!m_topology.is_border_slot(s))
+      if(!m_mesh.is_border_edge(m_mesh.out[k]))
         continue;
-      const Index j = m_topology.neighbors[s];
+      const Index j = m_mesh.out_target[k];
       double l = 0.;
       for(int c = 0; c < 3; ++c)
         l += (xyz[3 * j + c] - xyz[3 * i + c]) * (xyz[3 * j + c] - xyz[3 * i + c]);
       l = std::sqrt(l);
       if(!(l > 0.))
         uniform = true;
-      const double x = uniform ? 1. : 1. / l;
-      push(w, j, x);
-      total += x;
+      col[count] = j;
+      val[count] = uniform ? 1. : 1. / l;
+      total += val[count];
+      ++count;
     }
-    const std::size_t count = w.columns.size() - first;
-    for(std::size_t k = first; k < w.columns.size(); ++k)
-      w.values[k] = uniform ? 1. / double(count) : w.values[k] / total;
+    for(std::size_t k = 0; k < count; ++k)
+      val[k] = uniform ? 1. / double(count) : val[k] / total;
+    return count;
   }
 
-  // ---- second-order differences (see second_order_difference_coefficients()) ----
-  void build_hinges()
+  // ---- second-order differences (see second_order_difference_coefficients()) ----------
+  // The hinge of an interior edge is stored at its canonical halfedge e (the smaller of the
+  // two): v1 = source(e), v2 = target(e), v3 opposite e in its face, v4 opposite twin(e).
+  void compute_hinge_coefficients(const double* xyz)
   {
-    const std::vector<Index>& tri = *m_triangles;
-    const std::size_t nf = tri.size() / 3;
-    m_hinges.clear();
-    for(std::size_t f = 0; f < nf; ++f)
-      for(int k = 0; k < 3; ++k)
-      {
-        const Index a = tri[3 * f + k], b = tri[3 * f + (k + 1) % 3], c = tri[3 * f + (k + 2) % 3];
-        if(a > b)
-          continue;                                   // each undirected edge once
-        const Index d = m_topology.slot_opposite[m_topology.corner_twin[3 * f + k]];
-        if(d == invalid_index || d == c)
-          continue;                                   // border edge (or a doubled triangle): no hinge
-        m_hinges.push_back({{a, b, c, d}});
-      }
-    // pattern of the SOD rows: every pair of vertices sharing a hinge
-    const std::size_t n = m_topology.n;
-    std::vector<Index> start(n + 1, 0);
-    for(const auto& h : m_hinges)
-      for(int i = 0; i < 4; ++i)
-        start[h[i] + 1] += 3;
-    for(std::size_t i = 0; i < n; ++i)
-      start[i + 1] += start[i];
-    std::vector<Index> fill(start.begin(), start.end() - 1), raw(start[n]);
-    for(const auto& h : m_hinges)
-      for(int i = 0; i < 4; ++i)
-        for(int k = 0; k < 4; ++k)
-          if(k != i)
-            raw[fill[h[i]]++] = h[k];
-    m_sod_offsets.assign(n + 1, 0);
-    m_sod_columns.clear();
-    for(std::size_t i = 0; i < n; ++i)
+    const std::size_t h0 = 3 * m_mesh.nf;
+    m_hinge.resize(h0);
+    m_hinge_valid.assign(h0, 0);
+    for(Index e = 0; e < h0; ++e)
     {
-      Index* first = raw.data() + start[i];
-      Index* last = raw.data() + start[i + 1];
-      std::sort(first, last);
-      last = std::unique(first, last);
-      m_sod_columns.insert(m_sod_columns.end(), first, last);
-      m_sod_offsets[i + 1] = static_cast<Index>(m_sod_columns.size());
-    }
-    m_hinge_slots.resize(12 * m_hinges.size());
-    for(std::size_t h = 0; h < m_hinges.size(); ++h)
-    {
-      int q = 0;
-      for(int i = 0; i < 4; ++i)
-        for(int k = 0; k < 4; ++k)
-          if(k != i)
-          {
-            const Index* first = m_sod_columns.data() + m_sod_offsets[m_hinges[h][i]];
-            const Index* last = m_sod_columns.data() + m_sod_offsets[m_hinges[h][i] + 1];
-            m_hinge_slots[12 * h + q++] = static_cast<Index>(std::lower_bound(first, last, m_hinges[h][k]) - m_sod_columns.data());
-          }
-    }
-    m_hinge_pattern_built = true;
-  }
-
-  void accumulate_second_order_differences(const double* xyz)
-  {
-    if(!m_hinge_pattern_built)
-      build_hinges();
-    m_sod_sum.assign(m_sod_columns.size(), 0.);
-    for(std::size_t h = 0; h < m_hinges.size(); ++h)
-    {
-      const double* p1 = xyz + 3 * std::size_t(m_hinges[h][0]);
-      const double* p2 = xyz + 3 * std::size_t(m_hinges[h][1]);
-      const double* p3 = xyz + 3 * std::size_t(m_hinges[h][2]);
-      const double* p4 = xyz + 3 * std::size_t(m_hinges[h][3]);
-      double coef[4];
-      if(!second_order_difference_coefficients(p1, p2, p3, p4, min_relative_hinge_height, coef))
+      const Index t = m_mesh.twin[e];
+      if(!(t > e) || !m_mesh.has_face(t))
         continue;
-      int q = 0;
-      for(int i = 0; i < 4; ++i)
-        for(int k = 0; k < 4; ++k)
-          if(k != i)
-            m_sod_sum[m_hinge_slots[12 * h + q++]] -= coef[i] * coef[k];
+      const Index v[4] = {m_mesh.source[e], m_mesh.target[e], m_mesh.opposite_vertex(e), m_mesh.opposite_vertex(t)};
+      if(v[2] == v[3])
+        continue;                                    // a doubled triangle has no hinge
+      m_hinge_valid[e] = second_order_difference_coefficients(xyz + 3 * std::size_t(v[0]), xyz + 3 * std::size_t(v[1]),
+                                                              xyz + 3 * std::size_t(v[2]), xyz + 3 * std::size_t(v[3]),
+                                                              min_relative_hinge_height, m_hinge[e].data());
     }
   }
 
-  // lambda_ij = -sum_e c_ei c_ej / sum_e c_ei^2; the denominator equals the row sum of the
-  // numerators (the coefficients of a hinge sum to 0), which is used so that the weights sum to 1.
-  bool sod_row(std::size_t i, Sparse_weights& w) const
+  // adds the contribution of the hinge of the edge of h to the row of its vertex number `position`
+  void add_hinge(Index h, int position_if_canonical, int position_otherwise)
   {
-    const Index b = m_sod_offsets[i], e = m_sod_offsets[i + 1];
+    const Index t = m_mesh.twin[h];
+    if(!m_mesh.has_face(h) || !m_mesh.has_face(t))
+      return;
+    const Index e = (std::min)(h, t);
+    if(!m_hinge_valid[e])
+      return;
+    const int k = (e == h) ? position_if_canonical : position_otherwise;
+    const Index v[4] = {m_mesh.source[e], m_mesh.target[e], m_mesh.opposite_vertex(e), m_mesh.opposite_vertex(m_mesh.twin[e])};
+    const std::array<double, 4>& c = m_hinge[e];
+    for(int m = 0; m < 4; ++m)
+    {
+      if(m == k)
+        continue;
+      const double x = -c[k] * c[m];
+      std::size_t q = 0;
+      while(q < m_local_columns.size() && m_local_columns[q] != v[m])
+        ++q;
+      if(q == m_local_columns.size())
+      {
+        m_local_columns.push_back(v[m]);
+        m_local_values.push_back(x);
+      }
+      else
+        m_local_values[q] += x;
+    }
+  }
+
+  // lambda_ij = -sum_e c_ei c_ej / sum_e c_ei^2 over the hinges that hold i: the edges at i
+  // and the edges opposite i. The denominator equals the row sum of the numerators (the
+  // coefficients of a hinge sum to 0), which is used so that the weights sum to 1.
+  std::size_t sod_row(std::size_t i, Index* col, double* val)
+  {
+    m_local_columns.clear();
+    m_local_values.clear();
+    for(Index k = m_mesh.out_offsets[i]; k < m_mesh.out_offsets[i + 1]; ++k)
+    {
+      const Index h = m_mesh.out[k];            // i -> j: i is v1 of h's hinge, v2 of its twin's
+      add_hinge(h, 0, 1);
+      if(m_mesh.has_face(h))                     // the edge opposite i in the face of h: i is v3 or v4
+        add_hinge(Triangle_halfedges::next_in_face(h), 2, 3);
+    }
     double sum = 0., abs_sum = 0.;
-    for(Index s = b; s < e; ++s) { sum += m_sod_sum[s]; abs_sum += std::abs(m_sod_sum[s]); }
+    for(double x : m_local_values) { sum += x; abs_sum += std::abs(x); }
     if(!(sum > 0.) || !std::isfinite(sum) || !(abs_sum <= max_sod_absolute_sum * sum))
-      return false;
+      return 0;
     const double inv = 1. / sum;
-    for(Index s = b; s < e; ++s)
-      push(w, m_sod_columns[s], m_sod_sum[s] * inv);
-    return true;
+    for(std::size_t q = 0; q < m_local_columns.size(); ++q)
+    {
+      col[q] = m_local_columns[q];
+      val[q] = m_local_values[q] * inv;
+    }
+    return m_local_columns.size();
   }
 
   const std::vector<Index>* m_triangles = nullptr;
-  One_ring_topology m_topology;
-  std::vector<double> m_slot_weight;
-  // SOD
-  bool m_hinge_pattern_built = false;
-  std::vector<std::array<Index, 4> > m_hinges;
-  std::vector<Index> m_sod_offsets, m_sod_columns, m_hinge_slots;
-  std::vector<double> m_sod_sum;
+  Triangle_halfedges m_mesh;
+  std::vector<double> m_cotangent;
+  std::vector<std::array<double, 4> > m_hinge;
+  std::vector<unsigned char> m_hinge_valid;
+  std::vector<Index> m_local_columns;
+  std::vector<double> m_local_values;
 };
 
 } // namespace internal

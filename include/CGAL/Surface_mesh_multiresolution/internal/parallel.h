@@ -1,0 +1,46 @@
+// Copyright (c) 2026  The Surface_mesh_multiresolution authors. All rights reserved.
+//
+// This file is part of Surface_mesh_multiresolution, an add-on package for CGAL.
+//
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s)     : The Surface_mesh_multiresolution authors
+#ifndef CGAL_SURFACE_MESH_MULTIRESOLUTION_INTERNAL_PARALLEL_H
+#define CGAL_SURFACE_MESH_MULTIRESOLUTION_INTERNAL_PARALLEL_H
+
+#include <CGAL/Surface_mesh_multiresolution/internal/config.h>
+
+#include <cstddef>
+
+#ifdef CGAL_LINKED_WITH_TBB
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#endif
+
+namespace CGAL {
+namespace Surface_mesh_multiresolution {
+namespace internal {
+
+// Calls f(first, last) on consecutive blocks of [0, n), in parallel with TBB when it is
+// linked and n is large enough to pay for it. Callers only use it for loops whose
+// iterations write disjoint data, so results do not depend on the number of threads.
+template <typename F>
+void parallel_for_blocks(std::size_t n, const F& f, std::size_t grain = 8192)
+{
+#ifdef CGAL_LINKED_WITH_TBB
+  if(n >= 2 * grain)
+  {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, grain),
+                      [&](const tbb::blocked_range<std::size_t>& r) { f(r.begin(), r.end()); });
+    return;
+  }
+#endif
+  if(n > 0)
+    f(std::size_t(0), n);
+}
+
+} // namespace internal
+} // namespace Surface_mesh_multiresolution
+} // namespace CGAL
+
+#endif // CGAL_SURFACE_MESH_MULTIRESOLUTION_INTERNAL_PARALLEL_H
