@@ -49,37 +49,57 @@ struct Sparse_weights
       case 4: apply_fixed<4>(in, out, first, last); break;
       default:
         for(std::size_t i = first; i < last; ++i)
-        {
-          double* o = out + i * dimension;
-          for(std::size_t c = 0; c < dimension; ++c) o[c] = 0.;
-          for(Index k = offsets[i]; k < offsets[i + 1]; ++k)
-          {
-            const double w = values[k];
-            const double* x = in + std::size_t(columns[k]) * dimension;
-            for(std::size_t c = 0; c < dimension; ++c) o[c] += w * x[c];
-          }
-        }
+          row_general(i, in, out, dimension);
     }
+  }
+
+  // out[r] = sum_j w_rj in[j] for the rows r listed in rows[0..count) only (same arithmetic
+  // as apply(), so that a pyramid's decomposition and reconstruction agree bit for bit)
+  void apply_row_list(const double* in, double* out, std::size_t dimension, const Index* rows, std::size_t count) const
+  {
+    parallel_for_blocks(count, [&](std::size_t first, std::size_t last) {
+      switch(dimension)
+      {
+        case 1: for(std::size_t q = first; q < last; ++q) row_fixed<1>(rows[q], in, out); break;
+        case 2: for(std::size_t q = first; q < last; ++q) row_fixed<2>(rows[q], in, out); break;
+        case 3: for(std::size_t q = first; q < last; ++q) row_fixed<3>(rows[q], in, out); break;
+        case 4: for(std::size_t q = first; q < last; ++q) row_fixed<4>(rows[q], in, out); break;
+        default: for(std::size_t q = first; q < last; ++q) row_general(rows[q], in, out, dimension);
+      }
+    });
   }
 
 private:
   template <std::size_t D>
+  void row_fixed(std::size_t i, const double* in, double* out) const
+  {
+    double acc[D] = {};
+    for(Index k = offsets[i]; k < offsets[i + 1]; ++k)
+    {
+      const double w = values[k];
+      const double* x = in + std::size_t(columns[k]) * D;
+      for(std::size_t c = 0; c < D; ++c) acc[c] += w * x[c];
+    }
+    for(std::size_t c = 0; c < D; ++c) out[i * D + c] = acc[c];
+  }
+
+  void row_general(std::size_t i, const double* in, double* out, std::size_t dimension) const
+  {
+    double* o = out + i * dimension;
+    for(std::size_t c = 0; c < dimension; ++c) o[c] = 0.;
+    for(Index k = offsets[i]; k < offsets[i + 1]; ++k)
+    {
+      const double w = values[k];
+      const double* x = in + std::size_t(columns[k]) * dimension;
+      for(std::size_t c = 0; c < dimension; ++c) o[c] += w * x[c];
+    }
+  }
+
+  template <std::size_t D>
   void apply_fixed(const double* in, double* out, std::size_t first, std::size_t last) const
   {
-    const Index* off = offsets.data();
-    const Index* col = columns.data();
-    const double* val = values.data();
     for(std::size_t i = first; i < last; ++i)
-    {
-      double acc[D] = {};
-      for(Index k = off[i]; k < off[i + 1]; ++k)
-      {
-        const double w = val[k];
-        const double* x = in + std::size_t(col[k]) * D;
-        for(std::size_t c = 0; c < D; ++c) acc[c] += w * x[c];
-      }
-      for(std::size_t c = 0; c < D; ++c) out[i * D + c] = acc[c];
-    }
+      row_fixed<D>(i, in, out);
   }
 };
 

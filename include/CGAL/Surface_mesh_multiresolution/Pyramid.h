@@ -1,0 +1,192 @@
+// Copyright (c) 2026  The Surface_mesh_multiresolution authors. All rights reserved.
+//
+// This file is part of Surface_mesh_multiresolution, an add-on package for CGAL.
+//
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s)     : The Surface_mesh_multiresolution authors
+#ifndef CGAL_SURFACE_MESH_MULTIRESOLUTION_PYRAMID_H
+#define CGAL_SURFACE_MESH_MULTIRESOLUTION_PYRAMID_H
+
+#include <CGAL/Surface_mesh_multiresolution/internal/config.h>
+#include <CGAL/Surface_mesh_multiresolution/internal/Sparse_weights.h>
+#include <CGAL/Surface_mesh_multiresolution/Relaxation_scheme.h>
+
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace CGAL {
+namespace Surface_mesh_multiresolution {
+
+/// \cond SKIP_IN_MANUAL
+namespace internal {
+
+// One level of the pyramid: what goes from M_k to M_{k+1} and back. Vertices are named by
+// their global number (their rank in vertices(tm) of the input); rows of M_k are its
+// vertices in increasing global number.
+struct Pyramid_level
+{
+  std::vector<Index> vertices;                 // global numbers of the vertices of M_k, increasing
+  Sparse_weights weights;                      // lambda^k over the rows of M_k
+  std::vector<std::vector<double> > details;   // per channel: dimension doubles per row of M_k
+  // Exactness: f = fl(R f + d) can differ from f by rounding; the few components where it
+  // does carry an additive correction, so that reconstruction returns f bit for bit.
+  std::vector<std::vector<std::pair<Index, double> > > corrections;   // per channel: (row * dimension + component, correction)
+  std::vector<Index> odd_rows;                 // rows of M_k removed to make M_{k+1} (increasing)
+  std::vector<Index> even_rows;                // the other rows (increasing)
+  std::vector<Index> collapse_targets;         // global number of the vertex each odd vertex collapsed into
+  // faces: M_{k+1}'s face array is M_k's with the removed faces taken out (order kept) and
+  // the corners of the odd vertices renamed to their targets
+  std::vector<Index> removed_face_positions;   // positions in M_k's face array, increasing
+  std::vector<Index> removed_faces;            // 3 global numbers per removed face
+  std::vector<Index> renamed_corners;          // 3 * position in M_k's face array + corner
+  std::vector<Index> renamed_vertices;         // the odd vertex at that corner in M_k
+};
+
+} // namespace internal
+/// \endcond
+
+/*!
+ * \ingroup PkgSurfaceMeshMultiresolutionRef
+ * a Burt-Adelson mesh pyramid (Roy et al., Section 3): the coarsest mesh \f$ M_K \f$ with the
+ * values of all its channels, and for every level \f$ k < K \f$ the relaxation weights
+ * \f$ \lambda^k \f$ on \f$ M_k \f$, the details \f$ D_{k+1} \f$ of every vertex of \f$ M_k \f$ and every
+ * channel, and the records of the half-edge collapses that made \f$ M_{k+1} \f$.
+ *
+ * It is a self-contained value: copyable, savable (`IO::write_pyramid()`), and
+ * `reconstruct()` needs nothing else. Vertices are named by their rank in `vertices(tm)`
+ * of the decomposed mesh. Channel 0 is the geometry (3 doubles); channels 1 to N are the
+ * attribute maps given to `decompose()`, in tuple order.
+ *
+ * Detail sets are numbered as in the paper: \f$ D_1 \f$ (the finest, one value per vertex of
+ * \f$ M_0 \f$) to \f$ D_K \f$ (one per vertex of \f$ M_{K-1} \f$).
+ *
+ * \tparam TriangleMesh the type of the decomposed mesh
+ */
+template <typename TriangleMesh>
+class Pyramid
+{
+public:
+  /// the mesh type
+  typedef TriangleMesh Triangle_mesh;
+
+  /// an empty pyramid (no vertex, no level)
+  Pyramid() = default;
+
+  /// \f$ K \f$: the number of detail sets, and of levels above the input
+  std::size_t number_of_levels() const { return m_levels.size(); }
+
+  /// \f$ |M_k| \f$ for \f$ 0 \le k \le K \f$
+  std::size_t number_of_vertices(std::size_t k) const
+  {
+    check_mesh_level(k);
+    return k < m_levels.size() ? m_levels[k].vertices.size() : m_coarse_vertices.size();
+  }
+
+  /// the number of faces of \f$ M_k \f$ for \f$ 0 \le k \le K \f$
+  std::size_t number_of_faces(std::size_t k) const
+  {
+    check_mesh_level(k);
+    std::size_t f = m_coarse_faces.size() / 3;
+    for(std::size_t l = m_levels.size(); l > k; --l)
+      f += m_levels[l - 1].removed_face_positions.size();
+    return f;
+  }
+
+  /// 1 (the geometry) + the number of attribute channels
+  std::size_t number_of_channels() const { return m_dimensions.size(); }
+
+  /// the number of doubles of one value of channel `c` (3 for the geometry)
+  std::size_t channel_dimension(std::size_t c) const { check_channel(c); return m_dimensions[c]; }
+
+  /// the relaxation scheme of the weights
+  Relaxation_scheme relaxation_scheme() const { return m_scheme; }
+
+  /// the global numbers (ranks in the input) of the vertices of \f$ M_k \f$, increasing
+  const std::vector<std::uint32_t>& vertices(std::size_t k) const
+  {
+    check_mesh_level(k);
+    return k < m_levels.size() ? m_levels[k].vertices : m_coarse_vertices;
+  }
+
+  /*!
+   * the details \f$ D_j \f$ of channel `c`, \f$ 1 \le j \le K \f$: `channel_dimension(c)` doubles
+   * for every vertex of \f$ M_{j-1} \f$, in the order of `vertices(j-1)`. They can be modified
+   * (filtering); `reconstruct()` uses them as they are.
+   */
+  std::vector<double>& details(std::size_t j, std::size_t c)
+  {
+    check_detail_level(j);
+    check_channel(c);
+    return m_levels[j - 1].details[c];
+  }
+
+  /// read access to the details \f$ D_j \f$ of channel `c`
+  const std::vector<double>& details(std::size_t j, std::size_t c) const
+  {
+    check_detail_level(j);
+    check_channel(c);
+    return m_levels[j - 1].details[c];
+  }
+
+  /// the global numbers of the vertices removed between \f$ M_{j-1} \f$ and \f$ M_j \f$ (the odd vertices of \f$ D_j \f$), \f$ 1 \le j \le K \f$
+  std::vector<std::uint32_t> odd_vertices(std::size_t j) const
+  {
+    check_detail_level(j);
+    std::vector<std::uint32_t> out;
+    for(Index r : m_levels[j - 1].odd_rows)
+      out.push_back(m_levels[j - 1].vertices[r]);
+    return out;
+  }
+
+  /// \cond SKIP_IN_MANUAL
+  typedef internal::Index Index;
+  std::vector<internal::Pyramid_level>& levels() { return m_levels; }
+  const std::vector<internal::Pyramid_level>& levels() const { return m_levels; }
+  std::vector<Index>& coarse_vertices() { return m_coarse_vertices; }
+  const std::vector<Index>& coarse_vertices() const { return m_coarse_vertices; }
+  std::vector<Index>& coarse_faces() { return m_coarse_faces; }
+  const std::vector<Index>& coarse_faces() const { return m_coarse_faces; }
+  std::vector<std::vector<double> >& coarse_values() { return m_coarse_values; }
+  const std::vector<std::vector<double> >& coarse_values() const { return m_coarse_values; }
+  std::vector<std::size_t>& dimensions() { return m_dimensions; }
+  const std::vector<std::size_t>& dimensions() const { return m_dimensions; }
+  std::size_t& number_of_input_vertices() { return m_number_of_input_vertices; }
+  std::size_t number_of_input_vertices() const { return m_number_of_input_vertices; }
+  void set_relaxation_scheme(Relaxation_scheme s) { m_scheme = s; }
+  /// \endcond
+
+private:
+  void check_mesh_level(std::size_t k) const
+  {
+    if(k > m_levels.size())
+      throw std::invalid_argument("mesh level " + std::to_string(k) + " does not exist: the pyramid has levels 0 to "
+                                  + std::to_string(m_levels.size()));
+  }
+  void check_detail_level(std::size_t j) const
+  {
+    if(j < 1 || j > m_levels.size())
+      throw std::invalid_argument("detail level " + std::to_string(j) + " does not exist: the pyramid has D_1 to D_"
+                                  + std::to_string(m_levels.size()));
+  }
+  void check_channel(std::size_t c) const
+  {
+    if(c >= m_dimensions.size())
+      throw std::invalid_argument("channel " + std::to_string(c) + " does not exist: the pyramid has "
+                                  + std::to_string(m_dimensions.size()) + " channels");
+  }
+
+  Relaxation_scheme m_scheme = Relaxation_scheme::CURVATURE;
+  std::size_t m_number_of_input_vertices = 0;
+  std::vector<std::size_t> m_dimensions{3};
+  std::vector<internal::Pyramid_level> m_levels;
+  std::vector<Index> m_coarse_vertices;                 // global numbers, increasing
+  std::vector<Index> m_coarse_faces;                    // 3 global numbers per face
+  std::vector<std::vector<double> > m_coarse_values;    // per channel, rows of M_K
+};
+
+} // namespace Surface_mesh_multiresolution
+} // namespace CGAL
+
+#endif // CGAL_SURFACE_MESH_MULTIRESOLUTION_PYRAMID_H

@@ -1,0 +1,124 @@
+// Copyright (c) 2026  The Surface_mesh_multiresolution authors. All rights reserved.
+//
+// This file is part of Surface_mesh_multiresolution, an add-on package for CGAL.
+//
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s)     : The Surface_mesh_multiresolution authors
+#ifndef CGAL_SURFACE_MESH_MULTIRESOLUTION_INTERNAL_HALFEDGE_COLLAPSE_COST_ADAPTER_H
+#define CGAL_SURFACE_MESH_MULTIRESOLUTION_INTERNAL_HALFEDGE_COLLAPSE_COST_ADAPTER_H
+
+#include <CGAL/Surface_mesh_multiresolution/internal/config.h>
+
+#include <CGAL/boost/graph/helpers.h>
+#include <CGAL/boost/graph/named_params_helper.h>
+#include <CGAL/Surface_mesh_simplification/Policies/Edge_collapse/Edge_profile.h>
+#include <CGAL/Surface_mesh_simplification/Policies/Edge_collapse/GarlandHeckbert_plane_policies.h>
+
+#include <boost/optional.hpp>
+
+#include <type_traits>
+#include <utility>
+
+namespace CGAL {
+namespace Surface_mesh_multiresolution {
+namespace internal {
+
+// Every use of Surface_mesh_simplification (SMS) goes through this header.
+//
+// A half-edge collapse source(h) -> target(h) is an SMS edge collapse whose placement is
+// the target's position, so any SMS `GetCost` model scores it: cost(profile, p(target)).
+// Policies that keep per-vertex state (`Update_tag` true: the Garland-Heckbert family) are
+// driven through the protocol SMS's own driver uses, which is not documented API:
+// initialize(tm, vpm, gt) once, then update_after_collapse(profile built before the
+// collapse, kept vertex) after every collapse (quadrics accumulate over the levels).
+
+template <typename T, typename = void>
+struct Has_update_protocol : std::false_type {};
+template <typename T>
+struct Has_update_protocol<T, std::void_t<typename T::Update_tag> >
+  : std::integral_constant<bool, T::Update_tag::value> {};
+
+template <typename TriangleMesh, typename VertexPointMap, typename GeomTraits, typename GetCost>
+class Halfedge_collapse_cost_adapter
+{
+  typedef typename boost::graph_traits<TriangleMesh>::vertex_descriptor     vertex_descriptor;
+  typedef typename boost::graph_traits<TriangleMesh>::halfedge_descriptor   halfedge_descriptor;
+  typedef typename boost::property_traits<VertexPointMap>::value_type       Point;
+  typedef typename GeomTraits::FT                                            FT;
+  typedef typename CGAL::GetInitializedVertexIndexMap<TriangleMesh>::const_type   Vertex_index_map;
+  typedef typename CGAL::GetInitializedHalfedgeIndexMap<TriangleMesh>::const_type Halfedge_index_map;
+  typedef CGAL::Surface_mesh_simplification::Edge_profile<TriangleMesh, VertexPointMap, GeomTraits> Profile;
+  static constexpr bool has_update = Has_update_protocol<GetCost>::value;
+
+public:
+  Halfedge_collapse_cost_adapter(TriangleMesh& tm, VertexPointMap vpm, const GeomTraits& gt, GetCost& get_cost)
+    : m_tm(tm), m_vpm(vpm), m_gt(gt), m_get_cost(get_cost),
+      m_vim(CGAL::get_initialized_vertex_index_map(tm)),
+      m_him(CGAL::get_initialized_halfedge_index_map(tm)),
+      m_has_border(!CGAL::is_closed(tm))
+  {
+    if constexpr(has_update)
+      m_get_cost.initialize(m_tm, m_vpm, m_gt);
+  }
+
+  // cost of moving source(h) onto target(h); an empty optional if the policy refuses it
+  Optional<double> cost(halfedge_descriptor h) const
+  {
+    const Profile profile(h, m_tm, m_gt, m_vim, m_vpm, m_him, m_has_border);
+    const boost::optional<FT> c = m_get_cost(profile, boost::optional<Point>(profile.p1()));
+    if(!c)
+      return Optional<double>();
+    return Optional<double>(CGAL::to_double(*c));
+  }
+
+  void before_collapse(halfedge_descriptor h)
+  {
+    if constexpr(has_update)
+      m_pending.emplace(h, m_tm, m_gt, m_vim, m_vpm, m_him, m_has_border);
+    CGAL_USE(h);
+  }
+
+  void after_collapse(vertex_descriptor kept)
+  {
+    if constexpr(has_update)
+    {
+      m_get_cost.update_after_collapse(*m_pending, kept);
+      m_pending.reset();
+    }
+    CGAL_USE(kept);
+  }
+
+private:
+  TriangleMesh& m_tm;
+  VertexPointMap m_vpm;
+  const GeomTraits& m_gt;
+  GetCost& m_get_cost;
+  Vertex_index_map m_vim;
+  Halfedge_index_map m_him;
+  bool m_has_border;
+  boost::optional<Profile> m_pending;
+};
+
+// Makes the cost policy for the working copy `work`: default Garland-Heckbert plane policies.
+template <typename GetCost, typename TriangleMesh, bool stateful = Has_update_protocol<GetCost>::value>
+struct Get_cost_holder
+{
+  GetCost policy;   // stateless: the user's object
+  template <typename UserCost>
+  Get_cost_holder(const UserCost& user, TriangleMesh&) : policy(user) {}
+};
+
+template <typename GetCost, typename TriangleMesh>
+struct Get_cost_holder<GetCost, TriangleMesh, true>
+{
+  GetCost policy;   // stateful: a fresh object of the same type bound to the working copy
+  template <typename UserCost>
+  Get_cost_holder(const UserCost&, TriangleMesh& work) : policy(work) {}
+};
+
+} // namespace internal
+} // namespace Surface_mesh_multiresolution
+} // namespace CGAL
+
+#endif // CGAL_SURFACE_MESH_MULTIRESOLUTION_INTERNAL_HALFEDGE_COLLAPSE_COST_ADAPTER_H

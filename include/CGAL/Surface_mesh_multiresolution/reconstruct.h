@@ -1,0 +1,240 @@
+// Copyright (c) 2026  The Surface_mesh_multiresolution authors. All rights reserved.
+//
+// This file is part of Surface_mesh_multiresolution, an add-on package for CGAL.
+//
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s)     : The Surface_mesh_multiresolution authors
+#ifndef CGAL_SURFACE_MESH_MULTIRESOLUTION_RECONSTRUCT_H
+#define CGAL_SURFACE_MESH_MULTIRESOLUTION_RECONSTRUCT_H
+
+#include <CGAL/Surface_mesh_multiresolution/internal/config.h>
+#include <CGAL/Surface_mesh_multiresolution/internal/channels.h>
+#include <CGAL/Surface_mesh_multiresolution/parameters.h>
+#include <CGAL/Surface_mesh_multiresolution/Pyramid.h>
+
+#include <CGAL/boost/graph/Euler_operations.h>
+#include <CGAL/boost/graph/helpers.h>
+#include <CGAL/boost/graph/named_params_helper.h>
+
+#include <stdexcept>
+#include <string>
+#include <tuple>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+namespace CGAL {
+namespace Surface_mesh_multiresolution {
+namespace internal {
+
+// Empties a mesh. Surface_mesh's clear() (and CGAL::clear()) drop the property maps the
+// caller attached for the channels; clear_without_removing_property_maps() keeps them.
+template <typename Mesh>
+auto clear_keeping_properties(Mesh& m, int) -> decltype(m.clear_without_removing_property_maps(), void())
+{
+  m.clear_without_removing_property_maps();
+}
+template <typename Mesh>
+void clear_keeping_properties(Mesh& m, long) { CGAL::clear(m); }
+
+// The values of every channel and the face array of level `level`, rebuilt from the
+// coarsest mesh: vertex splits on the face array, then Eq. 6 (odd vertices) and Eq. 7
+// (even vertices) with the stored weights and details.
+template <typename TriangleMesh>
+void reconstruct_arrays(const Pyramid<TriangleMesh>& pyr, std::size_t level,
+                        std::vector<std::vector<double> >& values, std::vector<Index>& F)
+{
+  const std::size_t nc = pyr.number_of_channels();
+  const std::size_t n0 = pyr.number_of_input_vertices();
+  values.assign(nc, std::vector<double>());
+  for(std::size_t c = 0; c < nc; ++c)
+  {
+    const std::size_t dim = pyr.dimensions()[c];
+    values[c].assign(n0 * dim, 0.);
+    const std::vector<Index>& cv = pyr.coarse_vertices();
+    for(std::size_t r = 0; r < cv.size(); ++r)
+      std::copy(pyr.coarse_values()[c].begin() + r * dim, pyr.coarse_values()[c].begin() + (r + 1) * dim,
+                values[c].begin() + std::size_t(cv[r]) * dim);
+  }
+  F = pyr.coarse_faces();
+  std::vector<Index> G;
+  std::vector<double> state, prediction;
+  std::vector<unsigned char> is_odd;
+  for(std::size_t k = pyr.number_of_levels(); k-- > level; )
+  {
+    const Pyramid_level& lev = pyr.levels()[k];
+    // faces of M_k: removed faces back at their places, odd vertices back at their corners
+    const std::size_t nf = F.size() / 3 + lev.removed_face_positions.size();
+    G.resize(3 * nf);
+    std::size_t from = 0, next_removed = 0;
+    for(std::size_t p = 0; p < nf; ++p)
+    {
+      if(next_removed < lev.removed_face_positions.size() && lev.removed_face_positions[next_removed] == p)
+      {
+        std::copy(lev.removed_faces.begin() + 3 * next_removed, lev.removed_faces.begin() + 3 * next_removed + 3, G.begin() + 3 * p);
+        ++next_removed;
+      }
+      else
+      {
+        std::copy(F.begin() + 3 * from, F.begin() + 3 * from + 3, G.begin() + 3 * p);
+        ++from;
+      }
+    }
+    for(std::size_t q = 0; q < lev.renamed_corners.size(); ++q)
+      G[lev.renamed_corners[q]] = lev.renamed_vertices[q];
+    F.swap(G);
+
+    // values of M_k
+    const std::size_t nk = lev.vertices.size();
+    is_odd.assign(nk, 0);
+    for(Index r : lev.odd_rows)
+      is_odd[r] = 1;
+    for(std::size_t c = 0; c < nc; ++c)
+    {
+      const std::size_t dim = pyr.dimensions()[c];
+      std::vector<double>& v = values[c];
+      state.resize(nk * dim);
+      prediction.resize(nk * dim);
+      for(std::size_t r = 0; r < nk; ++r)
+        std::copy(v.begin() + std::size_t(lev.vertices[r]) * dim, v.begin() + (std::size_t(lev.vertices[r]) + 1) * dim,
+                  state.begin() + r * dim);
+      for(std::size_t q = 0; q < lev.odd_rows.size(); ++q)   // an odd vertex starts from the value of its target
+        std::copy(v.begin() + std::size_t(lev.collapse_targets[q]) * dim, v.begin() + (std::size_t(lev.collapse_targets[q]) + 1) * dim,
+                  state.begin() + std::size_t(lev.odd_rows[q]) * dim);
+      const std::vector<double>& d = lev.details[c];
+      // Eq. 6: odd vertices (corrected before the even vertices read them)
+      lev.weights.apply_row_list(state.data(), prediction.data(), dim, lev.odd_rows.data(), lev.odd_rows.size());
+      for(Index r : lev.odd_rows)
+        for(std::size_t i = r * dim; i < (r + 1) * dim; ++i)
+          state[i] = prediction[i] + d[i];
+      for(const auto& cr : lev.corrections[c])
+        if(is_odd[cr.first / dim])
+          state[cr.first] = state[cr.first] + cr.second;
+      // Eq. 7: even vertices, from the intermediate mesh
+      lev.weights.apply_row_list(state.data(), prediction.data(), dim, lev.even_rows.data(), lev.even_rows.size());
+      for(Index r : lev.even_rows)
+        for(std::size_t i = r * dim; i < (r + 1) * dim; ++i)
+          state[i] = prediction[i] + d[i];
+      for(const auto& cr : lev.corrections[c])
+        if(!is_odd[cr.first / dim])
+          state[cr.first] = state[cr.first] + cr.second;
+      for(std::size_t r = 0; r < nk; ++r)
+        std::copy(state.begin() + r * dim, state.begin() + (r + 1) * dim, v.begin() + std::size_t(lev.vertices[r]) * dim);
+    }
+  }
+}
+
+} // namespace internal
+
+/*!
+ * \ingroup PkgSurfaceMeshMultiresolutionRef
+ * rebuilds the mesh \f$ M_k \f$ of level \f$ k \f$ = `level` of a pyramid into `out` (Roy et al.,
+ * Section 3.3): vertex splits re-insert the odd vertices of each level, odd vertices are
+ * predicted from their even neighbours (Eq. 6) and even vertices from the intermediate mesh
+ * (Eq. 7), each plus its details, from the coarsest mesh down to level \f$ k \f$.
+ *
+ * With unmodified details, level 0 is the decomposed mesh exactly: the same vertices in the
+ * same order with the same coordinates and attribute values (equal as doubles), the same
+ * faces; level \f$ k \f$ is \f$ M_k \f$ as it was during the decomposition.
+ *
+ * \tparam TriangleMesh a model of `MutableFaceGraph`
+ * \tparam NamedParameters a sequence of \ref smr_namedparameters "Named Parameters"
+ * \param pyr the pyramid
+ * \param out receives \f$ M_k \f$; it is emptied first (on `Surface_mesh`, its property maps are kept)
+ * \param np an optional sequence of \ref smr_namedparameters "Named Parameters" among the ones listed below
+ *
+ * \cgalNamedParamsBegin
+ *   \cgalParamNBegin{level}
+ *     \cgalParamDescription{the level \f$ k \f$ to rebuild\, \f$ 0 \le k \le K \f$}
+ *     \cgalParamType{std::size_t}
+ *     \cgalParamDefault{`0`}
+ *   \cgalParamNEnd
+ *   \cgalParamNBegin{vertex_attribute_maps}
+ *     \cgalParamDescription{property maps of `out` receiving the attribute channels\, of the same value types and in the same order as given to `decompose()`}
+ *     \cgalParamDefault{no attribute channel is written}
+ *   \cgalParamNEnd
+ *   \cgalParamNBegin{vertex_point_map}
+ *     \cgalParamDescription{a property map associating points to the vertices of `out`}
+ *     \cgalParamDefault{`boost::get(CGAL::vertex_point\, out)`}
+ *   \cgalParamNEnd
+ *   \cgalParamNBegin{geom_traits}
+ *     \cgalParamDescription{an instance of a geometric traits class}
+ *     \cgalParamDefault{a `CGAL::Kernel_traits` compatible with the point type}
+ *   \cgalParamNEnd
+ * \cgalNamedParamsEnd
+ *
+ * \throws std::invalid_argument if `level` is above \f$ K \f$, or the attribute maps do not match the pyramid's channels
+ */
+template <typename TriangleMesh, typename OutputMesh, typename NamedParameters = parameters::Default_named_parameters>
+void reconstruct(const Pyramid<TriangleMesh>& pyr, OutputMesh& out, const NamedParameters& np = parameters::default_values())
+{
+  using parameters::choose_parameter;
+  using parameters::get_parameter;
+  typedef typename boost::graph_traits<OutputMesh>::vertex_descriptor vertex_descriptor;
+  typedef typename GetGeomTraits<OutputMesh, NamedParameters>::type     Geom_traits;
+  typedef typename GetVertexPointMap<OutputMesh, NamedParameters>::type Vertex_point_map;
+
+  const std::size_t level = choose_parameter(get_parameter(np, internal_np::level), std::size_t(0));
+  if(level > pyr.number_of_levels())
+    throw std::invalid_argument("reconstruct: level " + std::to_string(level) + " does not exist (the pyramid has levels 0 to "
+                                + std::to_string(pyr.number_of_levels()) + ")");
+  const auto maps = internal::as_tuple(choose_parameter(get_parameter(np, internal_np::vertex_attribute_maps), std::tuple<>()));
+  typedef std::decay_t<decltype(maps)> Maps;
+  constexpr std::size_t nmaps = std::tuple_size<Maps>::value;
+  if(nmaps > 0)
+  {
+    if(nmaps + 1 != pyr.number_of_channels())
+      throw std::invalid_argument("reconstruct: " + std::to_string(nmaps) + " attribute maps given, the pyramid has "
+                                  + std::to_string(pyr.number_of_channels() - 1) + " attribute channels");
+    internal::for_each_channel(maps, [&](const auto& map, auto c) {
+      constexpr std::size_t dim = internal::Channel_traits<std::decay_t<decltype(map)> >::dimension;
+      if(dim != pyr.dimensions()[decltype(c)::value + 1])
+        throw std::invalid_argument("reconstruct: attribute map " + std::to_string(decltype(c)::value + 1) + " has dimension "
+                                    + std::to_string(dim) + ", the pyramid's channel has "
+                                    + std::to_string(pyr.dimensions()[decltype(c)::value + 1]));
+    });
+  }
+  const Geom_traits gt = choose_parameter<Geom_traits>(get_parameter(np, CGAL::internal_np::geom_traits));
+  Vertex_point_map vpm = choose_parameter(get_parameter(np, CGAL::internal_np::vertex_point),
+                                          get_property_map(CGAL::vertex_point, out));
+
+  std::vector<std::vector<double> > values;
+  std::vector<internal::Index> F;
+  internal::reconstruct_arrays(pyr, level, values, F);
+
+  internal::clear_keeping_properties(out, 0);
+  const std::vector<internal::Index>& verts = pyr.vertices(level);
+  std::vector<vertex_descriptor> vd(pyr.number_of_input_vertices());
+  std::vector<vertex_descriptor> ordered;
+  ordered.reserve(verts.size());
+  const auto point = gt.construct_point_3_object();
+  for(internal::Index g : verts)
+  {
+    vd[g] = add_vertex(out);
+    put(vpm, vd[g], point(values[0][3 * g], values[0][3 * g + 1], values[0][3 * g + 2]));
+    ordered.push_back(vd[g]);
+  }
+  std::vector<vertex_descriptor> tri(3);
+  for(std::size_t p = 0; p < F.size() / 3; ++p)
+  {
+    for(int i = 0; i < 3; ++i)
+      tri[i] = vd[F[3 * p + i]];
+    CGAL::Euler::add_face(tri, out);
+  }
+  // channels, written through the same traits as they were read: values of M_level
+  std::vector<double> buf;
+  internal::for_each_channel(maps, [&](const auto& map, auto c) {
+    constexpr std::size_t dim = internal::Channel_traits<std::decay_t<decltype(map)> >::dimension;
+    buf.resize(verts.size() * dim);
+    for(std::size_t r = 0; r < verts.size(); ++r)
+      std::copy(values[decltype(c)::value + 1].begin() + std::size_t(verts[r]) * dim,
+                values[decltype(c)::value + 1].begin() + (std::size_t(verts[r]) + 1) * dim, buf.begin() + r * dim);
+    internal::write_channel(map, ordered, buf.data(), dim, 0);
+  });
+}
+
+} // namespace Surface_mesh_multiresolution
+} // namespace CGAL
+
+#endif // CGAL_SURFACE_MESH_MULTIRESOLUTION_RECONSTRUCT_H
