@@ -1,0 +1,360 @@
+// Copyright (c) 2026  The Surface_mesh_multiresolution authors. All rights reserved.
+//
+// This file is part of Surface_mesh_multiresolution, an add-on package for CGAL.
+//
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// The mesh pyramid of Roy et al., Section 3: downsampling, decomposition, exact reconstruction.
+
+#include <catch2/catch.hpp>
+
+#include <smr_test_utils.h>
+
+#include <CGAL/Surface_mesh_multiresolution.h>
+#include <CGAL/Polygon_mesh_processing/border.h>
+#include <CGAL/Polygon_mesh_processing/connected_components.h>
+#include <CGAL/Surface_mesh_simplification/Policies/Edge_collapse/Edge_length_cost.h>
+#include <CGAL/Surface_mesh_simplification/Policies/Edge_collapse/LindstromTurk_cost.h>
+
+#include <algorithm>
+#include <array>
+#include <set>
+#include <vector>
+
+namespace SMR = CGAL::Surface_mesh_multiresolution;
+namespace PMP = CGAL::Polygon_mesh_processing;
+using smr_test::Mesh;
+using smr_test::Polyhedron;
+using smr_test::Point_3;
+using smr_test::Vector_3;
+
+namespace {
+
+typedef std::array<std::size_t, 3> Triangle;
+
+// oriented faces as vertex ranks, each rotated to start at its smallest rank
+template <typename TM>
+std::multiset<Triangle> face_set(const TM& tm)
+{
+  std::map<typename boost::graph_traits<TM>::vertex_descriptor, std::size_t> rank;
+  for(auto v : vertices(tm)) rank.emplace(v, rank.size());
+  std::multiset<Triangle> out;
+  for(auto f : faces(tm))
+  {
+    std::vector<std::size_t> t;
+    for(auto v : vertices_around_face(halfedge(f, tm), tm)) t.push_back(rank[v]);
+    REQUIRE(t.size() == 3);
+    std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
+    out.insert({{t[0], t[1], t[2]}});
+  }
+  return out;
+}
+
+template <typename TM>
+int euler_characteristic(const TM& tm)
+{
+  return int(vertices(tm).size()) - int(edges(tm).size()) + int(faces(tm).size());
+}
+
+template <typename TM>
+std::size_t number_of_borders(const TM& tm)
+{
+  std::vector<typename boost::graph_traits<TM>::halfedge_descriptor> cycles;
+  PMP::extract_boundary_cycles(tm, std::back_inserter(cycles));
+  return cycles.size();
+}
+
+template <typename TM>
+void check_exact_round_trip(const TM& tm, const SMR::Pyramid<TM>& pyr)
+{
+  TM out;
+  SMR::reconstruct(pyr, out);
+  REQUIRE(CGAL::is_valid_polygon_mesh(out) == CGAL::is_valid_polygon_mesh(tm));   // isolated vertices make both "invalid"
+  CHECK(smr_test::positions_in_order(out) == smr_test::positions_in_order(tm));   // bit for bit, same order
+  CHECK(face_set(out) == face_set(tm));
+}
+
+// every level: a valid mesh with the Euler characteristic and border count of the input,
+// its vertices at their input positions, its odd vertices pairwise non-adjacent, and
+// collapsing them (o -> e, in any order) gives the next level exactly
+template <typename TM>
+void check_levels(const TM& tm, const SMR::Pyramid<TM>& pyr)
+{
+  const auto input = smr_test::positions_in_order(tm);
+  const int chi = euler_characteristic(tm);
+  const std::size_t borders = number_of_borders(tm);
+  std::vector<TM> levels(pyr.number_of_levels() + 1);
+  for(std::size_t k = 0; k <= pyr.number_of_levels(); ++k)
+  {
+    INFO("level " << k);
+    SMR::reconstruct(pyr, levels[k], SMR::parameters::level(k));
+    const TM& m = levels[k];
+    REQUIRE(CGAL::is_valid_polygon_mesh(m));
+    CHECK(CGAL::is_triangle_mesh(m));
+    CHECK(vertices(m).size() == pyr.number_of_vertices(k));
+    CHECK(faces(m).size() == pyr.number_of_faces(k));
+    CHECK(euler_characteristic(m) == chi);
+    CHECK(number_of_borders(m) == borders);
+    const auto pos = smr_test::positions_in_order(m);
+    const auto& ids = pyr.vertices(k);
+    for(std::size_t r = 0; r < ids.size(); ++r)
+      REQUIRE(pos[r] == input[ids[r]]);
+  }
+  for(std::size_t j = 1; j <= pyr.number_of_levels(); ++j)
+  {
+    INFO("detail level " << j);
+    TM m = levels[j - 1];
+    const auto& ids = pyr.vertices(j - 1);
+    std::map<std::size_t, typename boost::graph_traits<TM>::vertex_descriptor> vertex_of;
+    std::size_t r = 0;
+    for(auto v : vertices(m)) vertex_of[ids[r++]] = v;
+    const auto odd = pyr.odd_vertices(j);
+    REQUIRE(!odd.empty());
+    std::set<std::size_t> odd_set(odd.begin(), odd.end());
+    for(std::size_t o : odd)
+      for(auto w : CGAL::vertices_around_target(vertex_of[o], m))
+      {
+        std::size_t g = 0;
+        for(const auto& p : vertex_of) if(p.second == w) g = p.first;
+        CHECK(odd_set.count(g) == 0);   // independent set
+      }
+    CHECK(pyr.number_of_vertices(j) + odd.size() == pyr.number_of_vertices(j - 1));
+  }
+}
+
+} // namespace
+
+TEMPLATE_TEST_CASE("decompose then reconstruct is exact", "[pyramid][roundtrip]", Mesh, Polyhedron)
+{
+  SECTION("closed sphere")
+  {
+    const TestType tm = smr_test::icosphere<TestType>(3);
+    const auto pyr = SMR::decompose(tm);
+    CHECK(pyr.number_of_levels() > 5);
+    CHECK(pyr.number_of_vertices(pyr.number_of_levels()) <= 10);
+    check_exact_round_trip(tm, pyr);
+    check_levels(tm, pyr);
+  }
+  SECTION("plane with a border, every scheme")
+  {
+    const TestType tm = smr_test::planar_grid<TestType>(12, 0.3);
+    for(auto s : {SMR::Relaxation_scheme::CURVATURE, SMR::Relaxation_scheme::SECOND_ORDER_DIFFERENCE, SMR::Relaxation_scheme::UNIFORM})
+    {
+      const auto pyr = SMR::decompose(tm, SMR::parameters::relaxation_scheme(s));
+      CHECK(pyr.number_of_levels() > 3);
+      check_exact_round_trip(tm, pyr);
+    }
+    check_levels(tm, SMR::decompose(tm));
+  }
+}
+
+TEST_CASE("exact round trip with colours and several channels", "[pyramid][roundtrip][channels]")
+{
+  Mesh m = smr_test::icosphere<Mesh>(3);
+  auto color = m.add_property_map<Mesh::Vertex_index, CGAL::IO::Color>("v:color").first;
+  auto temp = m.add_property_map<Mesh::Vertex_index, double>("v:temperature").first;
+  auto uv = m.add_property_map<Mesh::Vertex_index, smr_test::Kernel::Point_2>("v:uv").first;
+  for(auto v : vertices(m))
+  {
+    const Point_3 p = m.point(v);
+    color[v] = CGAL::IO::Color(static_cast<unsigned char>(127 + 120 * p.x()), static_cast<unsigned char>(127 + 120 * p.y()),
+                               static_cast<unsigned char>(127 + 120 * p.z()), 200);
+    temp[v] = 1e-3 * p.x() * p.y() - 273.15;   // values of very different magnitudes
+    uv[v] = smr_test::Kernel::Point_2(std::atan2(p.y(), p.x()), 1e6 * p.z());
+  }
+  const auto pyr = SMR::decompose(m, SMR::parameters::vertex_attribute_maps(std::make_tuple(color, temp, uv)));
+  CHECK(pyr.number_of_channels() == 4);
+  CHECK(pyr.channel_dimension(1) == 4);
+  CHECK(pyr.channel_dimension(2) == 1);
+  CHECK(pyr.channel_dimension(3) == 2);
+  Mesh out;
+  auto oc = out.add_property_map<Mesh::Vertex_index, CGAL::IO::Color>("v:color").first;
+  auto ot = out.add_property_map<Mesh::Vertex_index, double>("v:temperature").first;
+  auto ouv = out.add_property_map<Mesh::Vertex_index, smr_test::Kernel::Point_2>("v:uv").first;
+  SMR::reconstruct(pyr, out, SMR::parameters::vertex_attribute_maps(std::make_tuple(oc, ot, ouv)));
+  REQUIRE(num_vertices(out) == num_vertices(m));
+  CHECK(smr_test::positions_in_order(out) == smr_test::positions_in_order(m));
+  for(auto v : vertices(m))
+  {
+    CHECK(oc[v] == color[v]);
+    CHECK(ot[v] == temp[v]);
+    CHECK(ouv[v] == uv[v]);
+  }
+  // the reconstruction kept the property maps of `out` and can be repeated
+  SMR::reconstruct(pyr, out, SMR::parameters::level(2).vertex_attribute_maps(std::make_tuple(oc, ot, ouv)));
+  CHECK(num_vertices(out) == pyr.number_of_vertices(2));
+  CHECK(out.property_map<Mesh::Vertex_index, CGAL::IO::Color>("v:color").second);
+  // wrong attribute maps are refused
+  REQUIRE_THROWS_AS(SMR::reconstruct(pyr, out, SMR::parameters::vertex_attribute_maps(std::make_tuple(oc, ot))), std::invalid_argument);
+  REQUIRE_THROWS_AS(SMR::reconstruct(pyr, out, SMR::parameters::vertex_attribute_maps(std::make_tuple(ot, oc, ouv))), std::invalid_argument);
+  REQUIRE_THROWS_AS(SMR::reconstruct(pyr, out, SMR::parameters::level(pyr.number_of_levels() + 1)), std::invalid_argument);
+}
+
+TEST_CASE("exact round trip on real meshes of CGAL's data set", "[pyramid][roundtrip][data]")
+{
+  // closed, with holes, several components, genus > 0, sharp features, colours (COFF)
+  const char* names[] = {"meshes/elephant.off", "meshes/elephant-with-holes.off", "meshes/mech-holes-shark.off",
+                         "meshes/blobby_3cc.off", "meshes/fandisk.off", "meshes/knot1.off", "meshes/cow.off",
+                         "meshes/cactus.off", "meshes/dino.off", "meshes/head.off"};
+  std::size_t tested = 0;
+  for(const char* name : names)
+  {
+    Mesh m;
+    if(!smr_test::read_cgal_mesh(name, m))
+      continue;
+    INFO(name);
+    auto color = m.property_map<Mesh::Vertex_index, CGAL::IO::Color>("v:color");
+    if(color.second)
+    {
+      const auto pyr = SMR::decompose(m, SMR::parameters::vertex_attribute_maps(std::make_tuple(color.first)));
+      Mesh out;
+      auto oc = out.add_property_map<Mesh::Vertex_index, CGAL::IO::Color>("v:color").first;
+      SMR::reconstruct(pyr, out, SMR::parameters::vertex_attribute_maps(std::make_tuple(oc)));
+      CHECK(smr_test::positions_in_order(out) == smr_test::positions_in_order(m));
+      CHECK(face_set(out) == face_set(m));
+      for(auto v : vertices(m)) CHECK(oc[v] == color.first[v]);
+    }
+    else
+    {
+      const auto pyr = SMR::decompose(m);
+      CHECK(pyr.number_of_levels() > 3);
+      check_exact_round_trip(m, pyr);
+    }
+    ++tested;
+  }
+  if(tested == 0)
+    WARN("CGAL's data set (libcgal-demo) is not installed: skipped");
+  else
+    CHECK(tested == 10);
+}
+
+TEST_CASE("levels are valid meshes on real data with borders and components", "[pyramid][levels][data]")
+{
+  for(const char* name : {"meshes/elephant-with-holes.off", "meshes/blobby_3cc.off", "meshes/knot1.off"})
+  {
+    Mesh m;
+    if(!smr_test::read_cgal_mesh(name, m)) { WARN("CGAL data set missing: skipped"); return; }
+    INFO(name);
+    check_levels(m, SMR::decompose(m));
+  }
+}
+
+TEST_CASE("the downsampling removes a fifth of the vertices per level and stops where asked", "[pyramid][downsampling]")
+{
+  const Mesh m = smr_test::icosphere<Mesh>(4);
+  const auto pyr = SMR::decompose(m);
+  for(std::size_t k = 0; k + 1 < pyr.number_of_levels() && pyr.number_of_vertices(k) > 500; ++k)
+  {
+    const double ratio = double(pyr.number_of_vertices(k + 1)) / double(pyr.number_of_vertices(k));
+    CHECK(ratio < 0.9);   // an independent set of collapses removes a good share of each level
+    CHECK(ratio > 0.5);   // ... but at most every other vertex
+  }
+  const auto limited = SMR::decompose(m, SMR::parameters::number_of_levels(3));
+  CHECK(limited.number_of_levels() == 3);
+  for(std::size_t k = 0; k <= 3; ++k) CHECK(limited.number_of_vertices(k) == pyr.number_of_vertices(k));
+  const auto floor = SMR::decompose(m, SMR::parameters::minimum_number_of_vertices(std::size_t(1000)));
+  CHECK(floor.number_of_vertices(floor.number_of_levels()) == 1000);
+  CHECK(floor.number_of_vertices(floor.number_of_levels() - 1) > 1000);
+  check_exact_round_trip(m, floor);
+}
+
+TEST_CASE("tiny and degenerate inputs", "[pyramid][edge]")
+{
+  SECTION("a tetrahedron cannot be decimated: 0 levels, reconstruct returns it")
+  {
+    Mesh tet;
+    CGAL::make_tetrahedron(Point_3(0, 0, 0), Point_3(1, 0, 0), Point_3(0, 1, 0), Point_3(0, 0, 1), tet);
+    const auto pyr = SMR::decompose(tet, SMR::parameters::minimum_number_of_vertices(std::size_t(0)));
+    CHECK(pyr.number_of_levels() == 0);
+    CHECK(pyr.number_of_vertices(0) == 4);
+    check_exact_round_trip(tet, pyr);
+  }
+  SECTION("a single triangle")
+  {
+    Mesh tri;
+    CGAL::make_triangle(Point_3(0, 0, 0), Point_3(1, 0, 0), Point_3(0, 1, 0), tri);
+    const auto pyr = SMR::decompose(tri, SMR::parameters::minimum_number_of_vertices(std::size_t(0)));
+    CHECK(pyr.number_of_levels() == 0);
+    check_exact_round_trip(tri, pyr);
+  }
+  SECTION("an empty mesh")
+  {
+    Mesh empty, out;
+    const auto pyr = SMR::decompose(empty);
+    CHECK(pyr.number_of_levels() == 0);
+    SMR::reconstruct(pyr, out);
+    CHECK(num_vertices(out) == 0);
+  }
+  SECTION("isolated vertices and a degenerate (zero-area) triangle are kept")
+  {
+    Mesh m = smr_test::icosphere<Mesh>(2);
+    m.add_vertex(Point_3(5, 5, 5));
+    // a zero-area triangle: a vertex moved onto the middle of an edge of its link
+    const Mesh::Vertex_index v(20);
+    const Mesh::Halfedge_index h = next(halfedge(v, m), m);   // an edge of the link of v
+    m.point(v) = CGAL::midpoint(m.point(source(h, m)), m.point(target(h, m)));
+    const auto pyr = SMR::decompose(m);
+    CHECK(pyr.number_of_levels() > 3);
+    check_exact_round_trip(m, pyr);
+    CHECK(pyr.vertices(pyr.number_of_levels()).back() == num_vertices(m) - 1);   // the isolated vertex reaches the top
+  }
+}
+
+TEST_CASE("decomposition is deterministic", "[pyramid][determinism]")
+{
+  const Mesh m = smr_test::planar_grid<Mesh>(15, 0.3);
+  const auto a = SMR::decompose(m), b = SMR::decompose(m);
+  REQUIRE(a.number_of_levels() == b.number_of_levels());
+  for(std::size_t k = 0; k < a.number_of_levels(); ++k)
+  {
+    CHECK(a.levels()[k].vertices == b.levels()[k].vertices);
+    CHECK(a.levels()[k].odd_rows == b.levels()[k].odd_rows);
+    CHECK(a.levels()[k].weights.values == b.levels()[k].weights.values);
+    CHECK(a.levels()[k].details[0] == b.levels()[k].details[0]);
+    CHECK(a.levels()[k].removed_faces == b.levels()[k].removed_faces);
+  }
+  CHECK(a.coarse_faces() == b.coarse_faces());
+}
+
+TEST_CASE("other SMS cost policies drive the downsampling", "[pyramid][cost]")
+{
+  const Mesh m = smr_test::icosphere<Mesh>(3);
+  const auto el = SMR::decompose(m, CGAL::parameters::get_cost(CGAL::Surface_mesh_simplification::Edge_length_cost<Mesh>()));
+  CHECK(el.number_of_levels() > 3);
+  check_exact_round_trip(m, el);
+  const auto lt = SMR::decompose(m, SMR::parameters::get_cost(CGAL::Surface_mesh_simplification::LindstromTurk_cost<Mesh>()));
+  check_exact_round_trip(m, lt);
+}
+
+TEST_CASE("the visitor sees every level", "[pyramid][visitor]")
+{
+  struct Counting_visitor : SMR::Decomposition_visitor_base
+  {
+    std::vector<std::size_t>* started; std::size_t* removed; std::size_t* finished;
+    void on_level_started(std::size_t, std::size_t n) { started->push_back(n); }
+    void on_level_finished(std::size_t, std::size_t r) { *removed += r; }
+    void on_finished(std::size_t k) { *finished = k; }
+  };
+  std::vector<std::size_t> started; std::size_t removed = 0, finished = 0;
+  const Mesh m = smr_test::icosphere<Mesh>(2);
+  const auto pyr = SMR::decompose(m, SMR::parameters::visitor(Counting_visitor{{}, &started, &removed, &finished}));
+  CHECK(finished == pyr.number_of_levels());
+  CHECK(removed == num_vertices(m) - pyr.number_of_vertices(pyr.number_of_levels()));
+  REQUIRE(started.size() >= pyr.number_of_levels());
+  for(std::size_t k = 0; k < pyr.number_of_levels(); ++k) CHECK(started[k] == pyr.number_of_vertices(k));
+}
+
+TEST_CASE("decompose rejects bad input", "[pyramid][input]")
+{
+  Mesh quad;
+  CGAL::make_quad(Point_3(0, 0, 0), Point_3(1, 0, 0), Point_3(1, 1, 0), Point_3(0, 1, 0), quad);
+  REQUIRE_THROWS_WITH(SMR::decompose(quad), Catch::Contains("not a triangle"));
+  Mesh m = smr_test::icosphere<Mesh>(1);
+  m.point(Mesh::Vertex_index(3)) = Point_3(0, 0, std::numeric_limits<double>::quiet_NaN());
+  REQUIRE_THROWS_WITH(SMR::decompose(m), Catch::Contains("vertex 3"));
+  const Mesh s = smr_test::icosphere<Mesh>(1);
+  const auto pyr = SMR::decompose(s);
+  REQUIRE_THROWS_AS(pyr.details(0, 0), std::invalid_argument);
+  REQUIRE_THROWS_AS(pyr.details(1, 1), std::invalid_argument);
+  REQUIRE_THROWS_AS(pyr.number_of_vertices(pyr.number_of_levels() + 1), std::invalid_argument);
+}
