@@ -20,5 +20,6 @@
 #include <CGAL/Surface_mesh_multiresolution/Pyramid.h>
 #include <CGAL/Surface_mesh_multiresolution/decompose.h>
 #include <CGAL/Surface_mesh_multiresolution/reconstruct.h>
+#include <CGAL/Surface_mesh_multiresolution/pyramid_io.h>
 
 #endif // CGAL_SURFACE_MESH_MULTIRESOLUTION_H

@@ -19,6 +19,7 @@
 #include <algorithm>
 #include <array>
 #include <set>
+#include <sstream>
 #include <vector>
 
 namespace SMR = CGAL::Surface_mesh_multiresolution;
@@ -357,4 +358,90 @@ TEST_CASE("decompose rejects bad input", "[pyramid][input]")
   REQUIRE_THROWS_AS(pyr.details(0, 0), std::invalid_argument);
   REQUIRE_THROWS_AS(pyr.details(1, 1), std::invalid_argument);
   REQUIRE_THROWS_AS(pyr.number_of_vertices(pyr.number_of_levels() + 1), std::invalid_argument);
+}
+
+TEST_CASE("persistence: write, read, reconstruct is exact; corrupt files are refused", "[pyramid][io]")
+{
+  Mesh m = smr_test::planar_grid<Mesh>(12, 0.3);
+  auto color = m.add_property_map<Mesh::Vertex_index, CGAL::IO::Color>("v:color").first;
+  for(auto v : vertices(m)) color[v] = CGAL::IO::Color(static_cast<unsigned char>(v.idx() % 256), 7, 99);
+  const auto pyr = SMR::decompose(m, SMR::parameters::vertex_attribute_maps(std::make_tuple(color)));
+  std::stringstream ss(std::ios::in | std::ios::out | std::ios::binary);
+  REQUIRE(SMR::IO::write_pyramid(ss, pyr));
+  const std::string bytes = ss.str();
+
+  SMR::Pyramid<Mesh> back;
+  std::istringstream in(bytes, std::ios::binary);
+  REQUIRE(SMR::IO::read_pyramid(in, back));
+  CHECK(back.number_of_levels() == pyr.number_of_levels());
+  Mesh out;
+  auto oc = out.add_property_map<Mesh::Vertex_index, CGAL::IO::Color>("v:color").first;
+  SMR::reconstruct(back, out, SMR::parameters::vertex_attribute_maps(std::make_tuple(oc)));
+  CHECK(smr_test::positions_in_order(out) == smr_test::positions_in_order(m));
+  CHECK(face_set(out) == face_set(m));
+  for(auto v : vertices(m)) CHECK(oc[v] == color[v]);
+
+  // every truncation and a flipped bit anywhere are refused, leaving the target untouched
+  const SMR::Pyramid<Mesh> untouched = SMR::decompose(smr_test::icosphere<Mesh>(1));
+  for(std::size_t cut : {std::size_t(0), std::size_t(5), std::size_t(20), bytes.size() / 2, bytes.size() - 1})
+  {
+    SMR::Pyramid<Mesh> p = untouched;
+    std::istringstream t(bytes.substr(0, cut), std::ios::binary);
+    CHECK_FALSE(SMR::IO::read_pyramid(t, p));
+    CHECK(p.number_of_vertices(0) == untouched.number_of_vertices(0));
+  }
+  CGAL::Random rng(5);
+  for(int trial = 0; trial < 50; ++trial)
+  {
+    std::string corrupt = bytes;
+    const std::size_t at = std::size_t(rng.get_int(0, int(corrupt.size())));
+    corrupt[at] = static_cast<char>(corrupt[at] ^ (1 << rng.get_int(0, 8)));
+    SMR::Pyramid<Mesh> p = untouched;
+    std::istringstream t(corrupt, std::ios::binary);
+    CHECK_FALSE(SMR::IO::read_pyramid(t, p));
+    CHECK(p.number_of_levels() == untouched.number_of_levels());
+  }
+  std::istringstream garbage(std::string(1000, 'x'), std::ios::binary);
+  SMR::Pyramid<Mesh> p;
+  CHECK_FALSE(SMR::IO::read_pyramid(garbage, p));
+}
+
+TEST_CASE("the cost adapter gives the Garland-Heckbert cost of an independent quadric evaluation", "[pyramid][cost]")
+{
+  Mesh m = smr_test::icosphere<Mesh>(2);
+  CGAL::Random rng(2);
+  for(auto v : vertices(m)) m.point(v) = m.point(v) + Vector_3(rng.get_double(-.05, .05), rng.get_double(-.05, .05), 0);
+  typedef boost::property_map<Mesh, CGAL::vertex_point_t>::type VPM;
+  typedef CGAL::Surface_mesh_simplification::GarlandHeckbert_plane_policies<Mesh, smr_test::Kernel> GH;
+  const smr_test::Kernel gt;
+  GH gh(m);
+  SMR::internal::Halfedge_collapse_cost_adapter<Mesh, VPM, smr_test::Kernel, GH> adapter(m, get(CGAL::vertex_point, m), gt, gh);
+  // Q_v = sum over the faces at v of p p^T, p = (n, -n.x) with n the unit face normal (closed mesh: no border term)
+  std::vector<std::array<double, 16> > Q(num_vertices(m));
+  for(auto& q : Q) q.fill(0.);
+  for(auto f : faces(m))
+  {
+    std::vector<Point_3> p;
+    for(auto v : vertices_around_face(halfedge(f, m), m)) p.push_back(m.point(v));
+    Vector_3 n = CGAL::cross_product(p[1] - p[0], p[2] - p[0]);
+    n = n / std::sqrt(n.squared_length());
+    const double plane[4] = {n.x(), n.y(), n.z(), -(n * (p[0] - CGAL::ORIGIN))};
+    for(auto v : vertices_around_face(halfedge(f, m), m))
+      for(int i = 0; i < 4; ++i) for(int j = 0; j < 4; ++j) Q[v.idx()][4 * i + j] += plane[i] * plane[j];
+  }
+  std::size_t checked = 0;
+  for(auto h : halfedges(m))
+  {
+    const Point_3 x = m.point(target(h, m));
+    const double xh[4] = {x.x(), x.y(), x.z(), 1.};
+    double expected = 0.;
+    for(int i = 0; i < 4; ++i) for(int j = 0; j < 4; ++j)
+      expected += xh[i] * (Q[source(h, m).idx()][4 * i + j] + Q[target(h, m).idx()][4 * i + j]) * xh[j];
+    const auto c = adapter.cost(h);
+    REQUIRE(c);
+    // the cost of moving o onto e is Q_o(p_e) (Q_e(p_e) = 0); tolerance: rounding of sums of ~12 products of size 1
+    CHECK(*c == Approx(expected).epsilon(1e-9).margin(1e-12));
+    ++checked;
+  }
+  CHECK(checked == halfedges(m).size());
 }
