@@ -438,7 +438,7 @@ TEST_CASE("the cost adapter gives the Garland-Heckbert cost of an independent qu
     for(int i = 0; i < 4; ++i) for(int j = 0; j < 4; ++j)
       expected += xh[i] * (Q[source(h, m).idx()][4 * i + j] + Q[target(h, m).idx()][4 * i + j]) * xh[j];
     const auto c = adapter.cost(h);
-    REQUIRE(c);
+    REQUIRE(bool(c));
     // the cost of moving o onto e is Q_o(p_e) (Q_e(p_e) = 0); tolerance: rounding of sums of ~12 products of size 1
     CHECK(*c == Approx(expected).epsilon(1e-9).margin(1e-12));
     ++checked;
