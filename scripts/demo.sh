@@ -1,16 +1,20 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: GPL-3.0-or-later
-# The main job: installs what is missing, builds the examples and runs the demo on a real
-# mesh of CGAL's data set (or the mesh given as first argument), writing results to out/.
+# The main job: installs what is missing, builds the examples and runs the demos on a real
+# mesh of CGAL's data set (or the mesh given as first argument), writing results to out/:
+# the pyramid (levels as PLY, exact reconstruction), then the relaxation operators.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install_dependencies.sh
 BUILD=${SMR_BUILD_DIR:-build}
 cmake -S . -B "$BUILD" -DCMAKE_BUILD_TYPE=Release > /dev/null
-cmake --build "$BUILD" -j"$(nproc)" --target relax_geometry relax_colors
+cmake --build "$BUILD" -j"$(nproc)" --target decompose_reconstruct relax_geometry relax_colors
 ROOT=$PWD
 mkdir -p out && cd out
-echo "== Relaxation operators (Roy et al., Fig. 2): one step of each scheme =="
+echo "== Mesh pyramid (Roy et al., Section 3): decomposition, levels, exact reconstruction =="
+"$ROOT/$BUILD/examples/Surface_mesh_multiresolution/decompose_reconstruct" "$@"
+echo
+echo "== Relaxation operators (Fig. 2): one step of each scheme =="
 "$ROOT/$BUILD/examples/Surface_mesh_multiresolution/relax_geometry" "$@"
 echo
 echo "== Colour relaxation (Fig. 3): weights from the geometry, applied to colours =="

@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <set>
 #include <vector>
 
 namespace SMR = CGAL::Surface_mesh_multiresolution;
@@ -510,4 +511,35 @@ TEMPLATE_TEST_CASE("generic over FaceGraph models: Surface_mesh and Polyhedron_3
   TestType r = tm;
   SMR::relax(r, SMR::parameters::number_of_iterations(2));
   CHECK(smr_test::positions_in_order(r) != smr_test::positions_in_order(tm));
+}
+
+TEST_CASE("border rows hold exactly the border neighbours of every border vertex", "[relaxation][border]")
+{
+  std::vector<Mesh> meshes;
+  Mesh grid = smr_test::planar_grid<Mesh>(6, 0.2);
+  grid.add_vertex(Point_3(3, 3, 3));   // an isolated vertex last: the mesh's last row has no halfedge
+  meshes.push_back(grid);
+  Mesh holes;
+  if(smr_test::read_cgal_mesh("meshes/elephant-with-holes.off", holes)) meshes.push_back(holes);
+  if(smr_test::read_cgal_mesh("meshes/mannequin-devil.off", holes)) meshes.push_back(holes);
+  for(const Mesh& m : meshes)
+    for(auto s : all_schemes)
+    {
+      const auto R = SMR::relaxation_operator(m, SMR::parameters::relaxation_scheme(s));
+      std::size_t border_vertices = 0;
+      for(std::size_t i = 0; i < R.number_of_vertices(); ++i)
+      {
+        const auto v = R.vertex(i);
+        std::set<std::size_t> expected, got;
+        if(halfedge(v, m) == boost::graph_traits<Mesh>::null_halfedge()) { CHECK(R.row_rule(i) == SMR::Relaxation_row_rule::FIXED); continue; }
+        for(auto h : CGAL::halfedges_around_source(v, m))
+          if(CGAL::is_border_edge(h, m)) expected.insert(target(h, m).idx());
+        if(expected.empty()) { CHECK(R.row_rule(i) != SMR::Relaxation_row_rule::BORDER); continue; }
+        ++border_vertices;
+        REQUIRE(R.row_rule(i) == SMR::Relaxation_row_rule::BORDER);
+        for(auto k = R.row_offsets()[i]; k < R.row_offsets()[i + 1]; ++k) got.insert(R.column_indices()[k]);
+        CHECK(got == expected);
+      }
+      CHECK(border_vertices > 0);
+    }
 }

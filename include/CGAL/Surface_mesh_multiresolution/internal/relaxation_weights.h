@@ -132,11 +132,15 @@ struct Triangle_halfedges
       }
     }
     std::vector<Index> extra(n + 1, 0);
+    std::size_t border_halfedges = 0;
     for(Index h = 0; h < h0; ++h)
       if(twin[h] == invalid_index)
+      {
         ++extra[target[h] + 1];                      // target(h) needs a border halfedge towards source(h)
+        ++border_halfedges;
+      }
     // rows: the face halfedges, then the border halfedges
-    if(extra[n] == 0)                                // closed mesh: the rows are the face halfedges
+    if(border_halfedges == 0)                        // closed mesh: the rows are the face halfedges
     {
       out_offsets.swap(off);
       out.swap(face_out);
