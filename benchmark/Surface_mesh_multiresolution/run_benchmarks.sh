@@ -5,9 +5,9 @@
 set -euo pipefail
 ROOT="$(cd "$(dirname "$0")/../.." && pwd)"
 BUILD=${SMR_BENCH_BUILD_DIR:-$ROOT/build-bench}
-bash "$ROOT/scripts/install_dependencies.sh"
+bash "$ROOT/scripts/install_dependencies.sh" libopenmesh-dev libmeshoptimizer-dev
 cmake -S "$ROOT" -B "$BUILD" -DCMAKE_BUILD_TYPE=Release -DSMR_BUILD_BENCHMARKS=ON -DSMR_BUILD_TESTS=OFF -DSMR_BUILD_EXAMPLES=OFF > /dev/null
-cmake --build "$BUILD" -j"$(nproc)" --target bench_relaxation
+cmake --build "$BUILD" -j"$(nproc)" --target bench_relaxation bench_pyramid
 DATA="$ROOT/../shared/data"
 files=()
 if [ -d "$DATA" ]; then
@@ -17,4 +17,8 @@ if [ -d "$DATA" ]; then
     files+=("$BUILD/data/$f")
   done
 fi
+echo "## bench_relaxation"
 "$BUILD/benchmark/Surface_mesh_multiresolution/bench_relaxation" "${files[@]}"
+echo
+echo "## bench_pyramid"
+"$BUILD/benchmark/Surface_mesh_multiresolution/bench_pyramid" "${files[@]}"

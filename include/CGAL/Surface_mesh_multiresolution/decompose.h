@@ -240,6 +240,8 @@ Pyramid<TriangleMesh> decompose(const TriangleMesh& tm, const NamedParameters& n
   std::vector<double> f;
   struct Candidate { double cost; Index o, e; halfedge_descriptor h; };
   std::vector<Candidate> candidates;
+  std::vector<std::pair<double, Index> > order;
+  std::vector<unsigned char> on_border(n0, 0);
 
   while(pyr.levels().size() < max_levels && live > min_vertices)
   {
@@ -247,24 +249,33 @@ Pyramid<TriangleMesh> decompose(const TriangleMesh& tm, const NamedParameters& n
     visitor.on_level_started(k, live);
 
     // ---- select the odd vertices (greedy independent set of half-edge collapses)
+    // border vertices, once per level (is_border(v) walks around v)
+    std::fill(on_border.begin(), on_border.end(), 0);
+    for(halfedge_descriptor h : halfedges(work))
+      if(is_border(h, work))
+        on_border[get(gid, source(h, work))] = on_border[get(gid, target(h, work))] = 1;
     candidates.clear();
     for(halfedge_descriptor h : halfedges(work))
     {
       const vertex_descriptor o = source(h, work), e = target(h, work);
-      if(is_border(o, work) && !is_border_edge(h, work))
+      const Index go = get(gid, o);
+      if(on_border[go] && !is_border_edge(h, work))
         continue;                                     // border vertices move along the border only
       const internal::Optional<double> c = adapter.cost(h);
       if(c)
-        candidates.push_back(Candidate{*c, get(gid, o), get(gid, e), h});
+        candidates.push_back(Candidate{*c, go, get(gid, e), h});
     }
-    std::sort(candidates.begin(), candidates.end(), [](const Candidate& a, const Candidate& b) {
-      return a.cost < b.cost || (a.cost == b.cost && (a.o < b.o || (a.o == b.o && a.e < b.e)));
-    });
+    // increasing cost; equal costs in the (deterministic) order of halfedges(work)
+    order.resize(candidates.size());
+    for(std::size_t i = 0; i < candidates.size(); ++i)
+      order[i] = std::make_pair(candidates[i].cost, static_cast<Index>(i));
+    std::sort(order.begin(), order.end());
     std::fill(locked.begin(), locked.end(), 0);
     std::vector<Candidate> accepted;
     const std::size_t budget = live - min_vertices;
-    for(const Candidate& c : candidates)
+    for(const auto& entry : order)
     {
+      const Candidate& c = candidates[entry.second];
       if(accepted.size() >= budget)
         break;
       if(locked[c.o] || locked[c.e])

@@ -1,0 +1,202 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Pyramid decomposition and reconstruction next to the simplifiers of CGAL (SMS
+// edge_collapse with Garland-Heckbert plane policies), OpenMesh (Decimater with the
+// Quadric and IndependentSets modules) and meshoptimizer (meshopt_simplify), each run to the
+// coarsest vertex count of the pyramid. Every step runs in a child process of its own
+// (fork), so that its time and its peak memory are its own.
+//
+// Usage: bench_pyramid [mesh files...]   (default: CGAL data meshes)
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Surface_mesh.h>
+#include <CGAL/Surface_mesh_multiresolution.h>
+#include <CGAL/Real_timer.h>
+#include <CGAL/boost/graph/IO/polygon_mesh_io.h>
+#include <CGAL/Surface_mesh_simplification/edge_collapse.h>
+#include <CGAL/Surface_mesh_simplification/Policies/Edge_collapse/GarlandHeckbert_plane_policies.h>
+
+#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
+#include <OpenMesh/Tools/Decimater/DecimaterT.hh>
+#include <OpenMesh/Tools/Decimater/ModIndependentSetsT.hh>
+#include <OpenMesh/Tools/Decimater/ModQuadricT.hh>
+#include <meshoptimizer.h>
+
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <fstream>
+#include <functional>
+#include <iostream>
+#include <string>
+#include <vector>
+
+typedef CGAL::Exact_predicates_inexact_constructions_kernel K;
+typedef CGAL::Surface_mesh<K::Point_3>                      Mesh;
+typedef OpenMesh::TriMesh_ArrayKernelT<>                    OM_mesh;
+namespace SMR = CGAL::Surface_mesh_multiresolution;
+namespace SMS = CGAL::Surface_mesh_simplification;
+
+// resident memory now, in MiB
+double rss_mib()
+{
+  std::ifstream statm("/proc/self/statm");
+  long pages = 0, resident = 0;
+  statm >> pages >> resident;
+  return resident * double(sysconf(_SC_PAGESIZE)) / (1024. * 1024.);
+}
+
+struct Measure { double seconds = -1, peak_extra_mib = -1; long result = -1; };
+
+// runs f in a child process: its time, the growth of its peak RSS over the RSS at the fork,
+// and the number it returns (a vertex count)
+Measure in_child(const std::function<long()>& f)
+{
+  int fd[2];
+  if(pipe(fd) != 0) return Measure();
+  const pid_t pid = fork();
+  if(pid == 0)
+  {
+    close(fd[0]);
+    const double base = rss_mib();
+    CGAL::Real_timer t;
+    t.start();
+    Measure m;
+    m.result = f();
+    m.seconds = t.time();
+    rusage u;
+    getrusage(RUSAGE_SELF, &u);
+    m.peak_extra_mib = u.ru_maxrss / 1024. - base;
+    if(write(fd[1], &m, sizeof m) != sizeof m) _exit(1);
+    _exit(0);
+  }
+  close(fd[1]);
+  Measure m;
+  if(read(fd[0], &m, sizeof m) != sizeof m) m = Measure();
+  close(fd[0]);
+  int status;
+  waitpid(pid, &status, 0);
+  return m;
+}
+
+// `bench_pyramid --memory FILE`, run in a fresh process: RSS before loading, after loading,
+// and the peak while decomposing, in MiB
+int memory_mode(const char* file)
+{
+  const double base = rss_mib();
+  Mesh mesh;
+  if(!CGAL::IO::read_polygon_mesh(file, mesh)) return 1;
+  const double loaded = rss_mib();
+  const auto pyr = SMR::decompose(mesh, SMR::parameters::minimum_number_of_vertices(std::size_t(mesh.number_of_vertices() / 100)));
+  rusage u;
+  getrusage(RUSAGE_SELF, &u);
+  std::printf("%f %f %f %zu\n", base, loaded, u.ru_maxrss / 1024., pyr.number_of_levels());
+  return 0;
+}
+
+int main(int argc, char** argv)
+{
+  if(argc == 3 && std::string(argv[1]) == "--memory")
+    return memory_mode(argv[2]);
+  std::vector<std::string> files;
+  for(int i = 1; i < argc; ++i) files.push_back(argv[i]);
+  if(files.empty())
+    for(const char* f : {"meshes/bunny00.off", "meshes/refined_elephant.off", "meshes/armadillo.off"})
+      files.push_back(CGAL::data_file_path(f));
+
+  std::printf("| mesh | vertices | mesh RSS (MiB) | target | SMR decompose (s) | SMR reconstruct (s) | SMS edge_collapse (s) "
+              "| OpenMesh decimater (s) | meshopt_simplify (s) | decompose / SMS | reconstruct / decompose | decompose / meshopt "
+              "| µs per vertex | decompose peak RSS (MiB, mesh included) | peak / mesh RSS |\n");
+  std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+  for(const std::string& file : files)
+  {
+    Mesh mesh;
+    if(!CGAL::IO::read_polygon_mesh(file, mesh) || !CGAL::is_triangle_mesh(mesh))
+    {
+      std::cerr << "cannot read " << file << " as a triangle mesh: skipped\n";
+      continue;
+    }
+    // memory: measured by this program in a fresh process (see memory_mode())
+    double base = 0, loaded = 0, peak = 0;
+    {
+      const std::string command = std::string("'") + argv[0] + "' --memory '" + file + "'";
+      if(FILE* p = popen(command.c_str(), "r"))
+      {
+        if(std::fscanf(p, "%lf %lf %lf", &base, &loaded, &peak) != 3) base = loaded = peak = 0;
+        pclose(p);
+      }
+    }
+    const double mesh_rss = loaded - base;
+    const long n = long(mesh.number_of_vertices());
+
+    // the pyramid (kept in the parent too, for the reconstruction and the target count)
+    const SMR::Pyramid<Mesh> pyr = SMR::decompose(mesh, SMR::parameters::minimum_number_of_vertices(std::size_t(n / 100)));
+    const long target = long(pyr.number_of_vertices(pyr.number_of_levels()));
+    const Measure dec = in_child([&] {
+      const auto p = SMR::decompose(mesh, SMR::parameters::minimum_number_of_vertices(std::size_t(n / 100)));
+      return long(p.number_of_vertices(p.number_of_levels()));
+    });
+    const Measure rec = in_child([&] { Mesh out; SMR::reconstruct(pyr, out); return long(out.number_of_vertices()); });
+    const Measure sms = in_child([&] {
+      Mesh m = mesh;
+      SMS::GarlandHeckbert_plane_policies<Mesh, K> gh(m);
+      auto stop = [&m, target](const auto&, const auto&, std::size_t, std::size_t) { return long(m.number_of_vertices()) <= target; };
+      SMS::edge_collapse(m, stop, CGAL::parameters::get_cost(gh.get_cost()).get_placement(gh.get_placement()));
+      return long(m.number_of_vertices());
+    });
+    // the peers' own mesh structures are built outside the timing
+    OM_mesh om;
+    {
+      std::vector<OM_mesh::VertexHandle> vh;
+      for(auto v : mesh.vertices()) vh.push_back(om.add_vertex(OM_mesh::Point(mesh.point(v).x(), mesh.point(v).y(), mesh.point(v).z())));
+      for(auto f : mesh.faces())
+      {
+        std::vector<OM_mesh::VertexHandle> t;
+        for(auto v : CGAL::vertices_around_face(mesh.halfedge(f), mesh)) t.push_back(vh[v.idx()]);
+        om.add_face(t);
+      }
+    }
+    const Measure omd = in_child([&] {
+      OM_mesh m = om;
+      OpenMesh::Decimater::DecimaterT<OM_mesh> decimater(m);
+      OpenMesh::Decimater::ModQuadricT<OM_mesh>::Handle quadric;
+      OpenMesh::Decimater::ModIndependentSetsT<OM_mesh>::Handle independent;
+      decimater.add(quadric);
+      decimater.add(independent);
+      decimater.initialize();
+      // the independent-sets module locks the neighbourhood of each collapse for one pass:
+      // passes are repeated until the target is reached or a pass removes nothing
+      std::size_t live = m.n_vertices(), removed = 1;
+      while(live > std::size_t(target) && removed > 0)
+      {
+        for(auto v : m.vertices()) m.status(v).set_locked(false);   // the module never unlocks by itself
+        removed = decimater.decimate_to(std::size_t(target));
+        live -= removed;
+      }
+      m.garbage_collection();
+      return long(m.n_vertices());
+    });
+    std::vector<float> xyz;
+    std::vector<unsigned int> indices;
+    for(auto v : mesh.vertices()) xyz.insert(xyz.end(), {float(mesh.point(v).x()), float(mesh.point(v).y()), float(mesh.point(v).z())});
+    for(auto f : mesh.faces())
+      for(auto v : CGAL::vertices_around_face(mesh.halfedge(f), mesh)) indices.push_back(v.idx());
+    const Measure mo = in_child([&] {
+      // meshoptimizer targets an index count: faces ~ 2 x vertices on a closed mesh
+      std::vector<unsigned int> out(indices.size());
+      const std::size_t count = meshopt_simplify(out.data(), indices.data(), indices.size(), xyz.data(), xyz.size() / 3,
+                                                 3 * sizeof(float), std::size_t(6 * target), 1.f);
+      std::vector<char> used(xyz.size() / 3, 0);
+      long nv = 0;
+      for(std::size_t i = 0; i < count; ++i) if(!used[out[i]]) { used[out[i]] = 1; ++nv; }
+      return nv;
+    });
+    std::string name = file.substr(file.find_last_of('/') + 1);
+    std::printf("| %s | %ld | %.1f | %ld | %.3f | %.3f | %.3f (%ld v) | %.3f (%ld v) | %.3f (%ld v) | %.2f | %.3f | %.1f | %.2f | %.1f | %.2f |\n",
+                name.c_str(), n, mesh_rss, target, dec.seconds, rec.seconds, sms.seconds, sms.result, omd.seconds, omd.result,
+                mo.seconds, mo.result, dec.seconds / sms.seconds, rec.seconds / dec.seconds, dec.seconds / mo.seconds,
+                1e6 * dec.seconds / double(n), peak - base, (peak - base) / mesh_rss);
+    std::fflush(stdout);
+  }
+  return 0;
+}
