@@ -12,6 +12,7 @@
 #include <CGAL/Surface_mesh_multiresolution/internal/channels.h>
 #include <CGAL/Surface_mesh_multiresolution/internal/Halfedge_collapse_cost_adapter.h>
 #include <CGAL/Surface_mesh_multiresolution/internal/indexed_mesh.h>
+#include <CGAL/Surface_mesh_multiresolution/internal/parallel.h>
 #include <CGAL/Surface_mesh_multiresolution/internal/relaxation_weights.h>
 #include <CGAL/Surface_mesh_multiresolution/Decomposition_visitor_base.h>
 #include <CGAL/Surface_mesh_multiresolution/parameters.h>
@@ -241,6 +242,7 @@ Pyramid<TriangleMesh> decompose(const TriangleMesh& tm, const NamedParameters& n
   struct Candidate { double cost; Index o, e; halfedge_descriptor h; };
   std::vector<Candidate> candidates;
   std::vector<std::pair<double, Index> > order;
+  std::vector<unsigned char> cost_ok;
   std::vector<unsigned char> on_border(n0, 0);
 
   while(pyr.levels().size() < max_levels && live > min_vertices)
@@ -261,15 +263,23 @@ Pyramid<TriangleMesh> decompose(const TriangleMesh& tm, const NamedParameters& n
       const Index go = get(gid, o);
       if(on_border[go] && !is_border_edge(h, work))
         continue;                                     // border vertices move along the border only
-      const internal::Optional<double> c = adapter.cost(h);
-      if(c)
-        candidates.push_back(Candidate{*c, go, get(gid, e), h});
+      candidates.push_back(Candidate{0., go, get(gid, e), h});
     }
+    // the costs only read the mesh and the quadrics: evaluated in parallel (TBB), each into its own slot
+    cost_ok.assign(candidates.size(), 0);
+    internal::parallel_for_blocks(candidates.size(), [&](std::size_t first, std::size_t last) {
+      for(std::size_t i = first; i < last; ++i)
+      {
+        const internal::Optional<double> c = adapter.cost(candidates[i].h);
+        if(c) { candidates[i].cost = *c; cost_ok[i] = 1; }
+      }
+    }, 2048);
     // increasing cost; equal costs in the (deterministic) order of halfedges(work)
-    order.resize(candidates.size());
+    order.clear();
     for(std::size_t i = 0; i < candidates.size(); ++i)
-      order[i] = std::make_pair(candidates[i].cost, static_cast<Index>(i));
-    std::sort(order.begin(), order.end());
+      if(cost_ok[i])
+        order.push_back(std::make_pair(candidates[i].cost, static_cast<Index>(i)));
+    internal::parallel_sort(order.begin(), order.end());   // (cost, index) pairs are all different
     std::fill(locked.begin(), locked.end(), 0);
     std::vector<Candidate> accepted;
     const std::size_t budget = live - min_vertices;

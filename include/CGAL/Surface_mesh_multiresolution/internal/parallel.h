@@ -12,9 +12,12 @@
 
 #include <cstddef>
 
+#include <algorithm>
+
 #ifdef CGAL_LINKED_WITH_TBB
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
 #endif
 
 namespace CGAL {
@@ -37,6 +40,18 @@ void parallel_for_blocks(std::size_t n, const F& f, std::size_t grain = 8192)
 #endif
   if(n > 0)
     f(std::size_t(0), n);
+}
+
+// Sorts [first, last) by operator<, in parallel with TBB when it is linked. Callers sort keys
+// that are all different (a total order), so the result does not depend on the threads.
+template <typename RandomIt>
+void parallel_sort(RandomIt first, RandomIt last)
+{
+#ifdef CGAL_LINKED_WITH_TBB
+  tbb::parallel_sort(first, last);
+#else
+  std::sort(first, last);
+#endif
 }
 
 } // namespace internal
