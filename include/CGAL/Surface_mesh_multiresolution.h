@@ -21,5 +21,6 @@
 #include <CGAL/Surface_mesh_multiresolution/decompose.h>
 #include <CGAL/Surface_mesh_multiresolution/reconstruct.h>
 #include <CGAL/Surface_mesh_multiresolution/pyramid_io.h>
+#include <CGAL/Surface_mesh_multiresolution/filter.h>
 
 #endif // CGAL_SURFACE_MESH_MULTIRESOLUTION_H

@@ -1,0 +1,140 @@
+// Copyright (c) 2026  The Surface_mesh_multiresolution authors. All rights reserved.
+//
+// This file is part of Surface_mesh_multiresolution, an add-on package for CGAL.
+//
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Applications of the pyramid (Roy et al., Section 4): multiresolution filtering.
+
+#include <catch2/catch.hpp>
+
+#include <smr_test_utils.h>
+
+#include <CGAL/Surface_mesh_multiresolution.h>
+
+#include <cmath>
+#include <vector>
+
+namespace SMR = CGAL::Surface_mesh_multiresolution;
+using smr_test::Mesh;
+using smr_test::Point_3;
+using smr_test::Vector_3;
+
+namespace {
+
+// a unit sphere with noise along the normals (deterministic)
+Mesh noisy_sphere(double amplitude)
+{
+  Mesh m = smr_test::icosphere<Mesh>(4);
+  CGAL::Random rng(17);
+  for(auto v : vertices(m))
+    m.point(v) = CGAL::ORIGIN + (1. + rng.get_double(-amplitude, amplitude)) * (m.point(v) - CGAL::ORIGIN);
+  return m;
+}
+
+std::vector<double> coordinates(const SMR::Pyramid<Mesh>& pyr)
+{
+  Mesh out;
+  SMR::reconstruct(pyr, out);
+  std::vector<double> xyz;
+  for(auto v : vertices(out)) xyz.insert(xyz.end(), {out.point(v).x(), out.point(v).y(), out.point(v).z()});
+  return xyz;
+}
+
+double mean_distance_to_unit_sphere(const Mesh& m)
+{
+  double sum = 0.;
+  for(auto v : vertices(m)) sum += std::abs(std::sqrt((m.point(v) - CGAL::ORIGIN).squared_length()) - 1.);
+  return sum / double(num_vertices(m));
+}
+
+} // namespace
+
+TEST_CASE("detail scaling is linear: gain 1 is the identity, gains compose", "[filter][linear]")
+{
+  const Mesh m = noisy_sphere(0.02);
+  const SMR::Pyramid<Mesh> pyr = SMR::decompose(m);
+  REQUIRE(pyr.number_of_levels() >= 4);
+  const std::vector<double> x1 = coordinates(pyr);
+
+  SMR::Pyramid<Mesh> same = pyr;
+  SMR::scale_details(same, 2, 1.);
+  CHECK(coordinates(same) == x1);                        // exactly the input
+
+  SMR::Pyramid<Mesh> p2 = pyr, p3 = pyr, half_twice = pyr;
+  SMR::scale_details(p2, 2, 2.);
+  SMR::scale_details(p3, 2, 3.);
+  const std::vector<double> x2 = coordinates(p2), x3 = coordinates(p3);
+  // reconstruction is affine in the details: x(3) - x(1) = 2 (x(2) - x(1))
+  double largest = 0.;
+  for(std::size_t i = 0; i < x1.size(); ++i)
+  {
+    CHECK((x3[i] - x1[i]) == Approx(2. * (x2[i] - x1[i])).margin(1e-12));
+    largest = (std::max)(largest, std::abs(x2[i] - x1[i]));
+  }
+  CHECK(largest > 1e-4);                                 // the band is not empty
+  // gains compose (powers of two: exact products)
+  SMR::scale_details(half_twice, 2, 4.);
+  SMR::scale_details(half_twice, 2, 0.5);
+  CHECK(coordinates(half_twice) == x2);
+  // filtering copies left the original untouched
+  CHECK(coordinates(pyr) == x1);
+}
+
+TEST_CASE("low-pass filtering removes noise; stop-band and enhancement act on their band only", "[filter][bands]")
+{
+  const Mesh m = noisy_sphere(0.03);
+  const SMR::Pyramid<Mesh> pyr = SMR::decompose(m);
+  const std::size_t K = pyr.number_of_levels();
+  REQUIRE(K >= 6);
+  SMR::Pyramid<Mesh> low = pyr;
+  SMR::low_pass(low, 2);
+  Mesh smooth;
+  SMR::reconstruct(low, smooth);
+  CHECK(mean_distance_to_unit_sphere(smooth) < 0.5 * mean_distance_to_unit_sphere(m));
+
+  // zeroing D_a..D_b equals scaling each of them by 0, and leaves the coarser levels alone
+  SMR::Pyramid<Mesh> band = pyr, by_hand = pyr;
+  SMR::stop_band(band, 2, 4);
+  for(std::size_t j = 2; j <= 4; ++j) SMR::scale_details(by_hand, j, 0.);
+  CHECK(coordinates(band) == coordinates(by_hand));
+  Mesh coarse_a, coarse_b;
+  SMR::reconstruct(band, coarse_a, SMR::parameters::level(4));
+  SMR::reconstruct(pyr, coarse_b, SMR::parameters::level(4));
+  CHECK(smr_test::positions_in_order(coarse_a) == smr_test::positions_in_order(coarse_b));
+
+  SMR::Pyramid<Mesh> enhanced = pyr;
+  SMR::enhance(enhanced, 1, 2, 2.);
+  Mesh sharp;
+  SMR::reconstruct(enhanced, sharp);
+  CHECK(mean_distance_to_unit_sphere(sharp) > mean_distance_to_unit_sphere(m));   // the noise band doubled
+}
+
+TEST_CASE("filters on one channel leave the others alone", "[filter][channels]")
+{
+  Mesh m = noisy_sphere(0.02);
+  auto t = m.add_property_map<Mesh::Vertex_index, double>("v:t").first;
+  for(auto v : vertices(m)) t[v] = m.point(v).x() * 10.;
+  SMR::Pyramid<Mesh> pyr = SMR::decompose(m, SMR::parameters::vertex_attribute_maps(t));
+  SMR::scale_details(pyr, 1, 0., SMR::parameters::channel(std::size_t(1)));
+  Mesh out;
+  auto ot = out.add_property_map<Mesh::Vertex_index, double>("v:t").first;
+  SMR::reconstruct(pyr, out, SMR::parameters::vertex_attribute_maps(ot));
+  CHECK(smr_test::positions_in_order(out) == smr_test::positions_in_order(m));   // geometry: exact
+  bool changed = false;
+  for(auto v : vertices(m)) changed = changed || (ot[v] != t[v]);
+  CHECK(changed);
+}
+
+TEST_CASE("filters reject bad parameters", "[filter][input]")
+{
+  SMR::Pyramid<Mesh> pyr = SMR::decompose(noisy_sphere(0.01));
+  const std::size_t K = pyr.number_of_levels();
+  REQUIRE_THROWS_AS(SMR::scale_details(pyr, 0, 1.), std::invalid_argument);
+  REQUIRE_THROWS_AS(SMR::scale_details(pyr, K + 1, 1.), std::invalid_argument);
+  REQUIRE_THROWS_AS(SMR::scale_details(pyr, 1, 1., SMR::parameters::channel(std::size_t(1))), std::invalid_argument);
+  REQUIRE_THROWS_AS(SMR::scale_details(pyr, 1, std::nan("")), std::invalid_argument);
+  REQUIRE_THROWS_AS(SMR::low_pass(pyr, K + 1), std::invalid_argument);
+  REQUIRE_THROWS_AS(SMR::stop_band(pyr, 3, 2), std::invalid_argument);
+  REQUIRE_THROWS_AS(SMR::enhance(pyr, 0, 2, 2.), std::invalid_argument);
+}
