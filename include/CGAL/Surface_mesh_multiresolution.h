@@ -22,5 +22,6 @@
 #include <CGAL/Surface_mesh_multiresolution/reconstruct.h>
 #include <CGAL/Surface_mesh_multiresolution/pyramid_io.h>
 #include <CGAL/Surface_mesh_multiresolution/filter.h>
+#include <CGAL/Surface_mesh_multiresolution/denoise.h>
 
 #endif // CGAL_SURFACE_MESH_MULTIRESOLUTION_H
