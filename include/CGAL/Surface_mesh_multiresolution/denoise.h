@@ -131,6 +131,7 @@ double residual_deviation_factor(const Pyramid<TriangleMesh>& pyr, std::size_t j
  * noise-free surface has details, about the curvature times the squared edge length) is
  * taken out first: the estimator sees the residual \f$ d - R d \f$ of the details relaxed with
  * the level's own weights, rescaled to the deviation of one vertex's noise.
+ * \param pyr the pyramid
  * \param np optional: `channel` (default 0, the geometry)
  * \returns 0 for a pyramid without levels
  */
@@ -162,6 +163,7 @@ double estimate_noise(const Pyramid<TriangleMesh>& pyr, const NamedParameters& n
  * `estimate_noise()`, \f$ n \f$ the number of input vertices. Thresholding the details
  * themselves (`soft_threshold()`, the paper's rule) also removes the smooth part and shrinks
  * curved regions.
+ * \param pyr the pyramid, modified
  * \param np optional: `levels` and `channel` as for `soft_threshold()`
  * \returns the threshold used
  */
