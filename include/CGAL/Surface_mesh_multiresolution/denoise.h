@@ -35,6 +35,16 @@ std::size_t chosen_channel(const Pyramid<TriangleMesh>& pyr, const NamedParamete
   return c;
 }
 
+// Eq. 8 on one vector of dimension dim: zero if |v| <= t, else v - t v/|v|
+inline void soft_shrink(double* v, std::size_t dim, double t)
+{
+  double length = 0.;
+  for(std::size_t k = 0; k < dim; ++k) length += v[k] * v[k];
+  length = std::sqrt(length);
+  const double factor = length > t ? 1. - t / length : 0.;
+  for(std::size_t k = 0; k < dim; ++k) v[k] *= factor;
+}
+
 // the number of finest detail levels a function acts on: `levels` (default min(5, K))
 template <typename TriangleMesh, typename NamedParameters>
 std::size_t chosen_levels(const Pyramid<TriangleMesh>& pyr, const NamedParameters& np, const char* function)
@@ -76,13 +86,7 @@ void soft_threshold(Pyramid<TriangleMesh>& pyr, double t, const NamedParameters&
   {
     std::vector<double>& d = pyr.details(j, c);
     for(std::size_t i = 0; i < d.size(); i += dim)
-    {
-      double length = 0.;
-      for(std::size_t k = 0; k < dim; ++k) length += d[i + k] * d[i + k];
-      length = std::sqrt(length);
-      const double factor = length > t ? 1. - t / length : 0.;
-      for(std::size_t k = 0; k < dim; ++k) d[i + k] *= factor;
-    }
+      internal::soft_shrink(d.data() + i, dim, t);
   }
 }
 
@@ -182,14 +186,12 @@ double denoise(Pyramid<TriangleMesh>& pyr, const NamedParameters& np = parameter
   {
     internal::smooth_part_of_details(pyr, j, c, smooth);
     std::vector<double>& d = pyr.details(j, c);
+    for(std::size_t i = 0; i < d.size(); ++i)
+      d[i] -= smooth[i];
     for(std::size_t i = 0; i < d.size(); i += dim)
-    {
-      double length = 0.;
-      for(std::size_t k = 0; k < dim; ++k) length += (d[i + k] - smooth[i + k]) * (d[i + k] - smooth[i + k]);
-      length = std::sqrt(length);
-      const double factor = length > t ? 1. - t / length : 0.;   // Eq. 8 on the residual
-      for(std::size_t k = 0; k < dim; ++k) d[i + k] = smooth[i + k] + factor * (d[i + k] - smooth[i + k]);
-    }
+      internal::soft_shrink(d.data() + i, dim, t);   // Eq. 8 on the residual
+    for(std::size_t i = 0; i < d.size(); ++i)
+      d[i] += smooth[i];
   }
   return t;
 }
