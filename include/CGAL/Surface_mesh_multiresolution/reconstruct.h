@@ -38,6 +38,31 @@ auto clear_keeping_properties(Mesh& m, int) -> decltype(m.clear_without_removing
 template <typename Mesh>
 void clear_keeping_properties(Mesh& m, long) { CGAL::clear(m); }
 
+// The face array of M_k from the one of M_{k+1}: removed faces back at their places, odd
+// vertices back at their corners (vertex splits on arrays). G is scratch.
+inline void expand_faces(const Pyramid_level& lev, std::vector<Index>& F, std::vector<Index>& G)
+{
+  const std::size_t nf = F.size() / 3 + lev.removed_face_positions.size();
+  G.resize(3 * nf);
+  std::size_t from = 0, next_removed = 0;
+  for(std::size_t p = 0; p < nf; ++p)
+  {
+    if(next_removed < lev.removed_face_positions.size() && lev.removed_face_positions[next_removed] == p)
+    {
+      std::copy(lev.removed_faces.begin() + 3 * next_removed, lev.removed_faces.begin() + 3 * next_removed + 3, G.begin() + 3 * p);
+      ++next_removed;
+    }
+    else
+    {
+      std::copy(F.begin() + 3 * from, F.begin() + 3 * from + 3, G.begin() + 3 * p);
+      ++from;
+    }
+  }
+  for(std::size_t q = 0; q < lev.renamed_corners.size(); ++q)
+    G[lev.renamed_corners[q]] = lev.renamed_vertices[q];
+  F.swap(G);
+}
+
 // The values of every channel and the face array of level `level`, rebuilt from the
 // coarsest mesh: vertex splits on the face array, then Eq. 6 (odd vertices) and Eq. 7
 // (even vertices) with the stored weights and details.
@@ -64,26 +89,7 @@ void reconstruct_arrays(const Pyramid<TriangleMesh>& pyr, std::size_t level,
   for(std::size_t k = pyr.number_of_levels(); k-- > level; )
   {
     const Pyramid_level& lev = pyr.levels()[k];
-    // faces of M_k: removed faces back at their places, odd vertices back at their corners
-    const std::size_t nf = F.size() / 3 + lev.removed_face_positions.size();
-    G.resize(3 * nf);
-    std::size_t from = 0, next_removed = 0;
-    for(std::size_t p = 0; p < nf; ++p)
-    {
-      if(next_removed < lev.removed_face_positions.size() && lev.removed_face_positions[next_removed] == p)
-      {
-        std::copy(lev.removed_faces.begin() + 3 * next_removed, lev.removed_faces.begin() + 3 * next_removed + 3, G.begin() + 3 * p);
-        ++next_removed;
-      }
-      else
-      {
-        std::copy(F.begin() + 3 * from, F.begin() + 3 * from + 3, G.begin() + 3 * p);
-        ++from;
-      }
-    }
-    for(std::size_t q = 0; q < lev.renamed_corners.size(); ++q)
-      G[lev.renamed_corners[q]] = lev.renamed_vertices[q];
-    F.swap(G);
+    expand_faces(lev, F, G);
 
     // values of M_k
     const std::size_t nk = lev.vertices.size();
