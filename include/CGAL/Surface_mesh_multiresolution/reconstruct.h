@@ -131,6 +131,70 @@ void reconstruct_arrays(const Pyramid<TriangleMesh>& pyr, std::size_t level,
   }
 }
 
+// Writes the vertices \`verts\` (global numbers, increasing) with their values and the faces
+// F (global numbers) into \`out\`, emptied first, with the channel maps of \`np\`.
+// \throws std::invalid_argument if the maps do not match the pyramid's channels
+template <typename TriangleMesh, typename OutputMesh, typename NamedParameters>
+void write_output_mesh(const Pyramid<TriangleMesh>& pyr, const std::vector<Index>& verts,
+                       const std::vector<std::vector<double> >& values, const std::vector<Index>& F,
+                       OutputMesh& out, const NamedParameters& np)
+{
+  using parameters::choose_parameter;
+  using parameters::get_parameter;
+  typedef typename boost::graph_traits<OutputMesh>::vertex_descriptor vertex_descriptor;
+  typedef typename GetGeomTraits<OutputMesh, NamedParameters>::type     Geom_traits;
+  typedef typename GetVertexPointMap<OutputMesh, NamedParameters>::type Vertex_point_map;
+
+  const auto maps = as_tuple(choose_parameter(get_parameter(np, internal_np::vertex_attribute_maps), std::tuple<>()));
+  typedef std::decay_t<decltype(maps)> Maps;
+  constexpr std::size_t nmaps = std::tuple_size<Maps>::value;
+  if(nmaps > 0)
+  {
+    if(nmaps + 1 != pyr.number_of_channels())
+      throw std::invalid_argument("reconstruct: " + std::to_string(nmaps) + " attribute maps given, the pyramid has "
+                                  + std::to_string(pyr.number_of_channels() - 1) + " attribute channels");
+    for_each_channel(maps, [&](const auto& map, auto c) {
+      constexpr std::size_t dim = Channel_traits<std::decay_t<decltype(map)> >::dimension;
+      if(dim != pyr.dimensions()[decltype(c)::value + 1])
+        throw std::invalid_argument("reconstruct: attribute map " + std::to_string(decltype(c)::value + 1) + " has dimension "
+                                    + std::to_string(dim) + ", the pyramid's channel has "
+                                    + std::to_string(pyr.dimensions()[decltype(c)::value + 1]));
+    });
+  }
+  const Geom_traits gt = choose_parameter<Geom_traits>(get_parameter(np, CGAL::internal_np::geom_traits));
+  Vertex_point_map vpm = choose_parameter(get_parameter(np, CGAL::internal_np::vertex_point),
+                                          get_property_map(CGAL::vertex_point, out));
+
+  clear_keeping_properties(out, 0);
+  std::vector<vertex_descriptor> vd(pyr.number_of_input_vertices());
+  std::vector<vertex_descriptor> ordered;
+  ordered.reserve(verts.size());
+  const auto point = gt.construct_point_3_object();
+  for(Index g : verts)
+  {
+    vd[g] = add_vertex(out);
+    put(vpm, vd[g], point(values[0][3 * g], values[0][3 * g + 1], values[0][3 * g + 2]));
+    ordered.push_back(vd[g]);
+  }
+  std::vector<vertex_descriptor> tri(3);
+  for(std::size_t p = 0; p < F.size() / 3; ++p)
+  {
+    for(int i = 0; i < 3; ++i)
+      tri[i] = vd[F[3 * p + i]];
+    CGAL::Euler::add_face(tri, out);
+  }
+  // channels, written through the same traits as they were read
+  std::vector<double> buf;
+  for_each_channel(maps, [&](const auto& map, auto c) {
+    constexpr std::size_t dim = Channel_traits<std::decay_t<decltype(map)> >::dimension;
+    buf.resize(verts.size() * dim);
+    for(std::size_t r = 0; r < verts.size(); ++r)
+      std::copy(values[decltype(c)::value + 1].begin() + std::size_t(verts[r]) * dim,
+                values[decltype(c)::value + 1].begin() + (std::size_t(verts[r]) + 1) * dim, buf.begin() + r * dim);
+    write_channel(map, ordered, buf.data(), dim, 0);
+  });
+}
+
 } // namespace internal
 
 /*!
@@ -177,67 +241,14 @@ void reconstruct(const Pyramid<TriangleMesh>& pyr, OutputMesh& out, const NamedP
 {
   using parameters::choose_parameter;
   using parameters::get_parameter;
-  typedef typename boost::graph_traits<OutputMesh>::vertex_descriptor vertex_descriptor;
-  typedef typename GetGeomTraits<OutputMesh, NamedParameters>::type     Geom_traits;
-  typedef typename GetVertexPointMap<OutputMesh, NamedParameters>::type Vertex_point_map;
-
   const std::size_t level = choose_parameter(get_parameter(np, internal_np::level), std::size_t(0));
   if(level > pyr.number_of_levels())
     throw std::invalid_argument("reconstruct: level " + std::to_string(level) + " does not exist (the pyramid has levels 0 to "
                                 + std::to_string(pyr.number_of_levels()) + ")");
-  const auto maps = internal::as_tuple(choose_parameter(get_parameter(np, internal_np::vertex_attribute_maps), std::tuple<>()));
-  typedef std::decay_t<decltype(maps)> Maps;
-  constexpr std::size_t nmaps = std::tuple_size<Maps>::value;
-  if(nmaps > 0)
-  {
-    if(nmaps + 1 != pyr.number_of_channels())
-      throw std::invalid_argument("reconstruct: " + std::to_string(nmaps) + " attribute maps given, the pyramid has "
-                                  + std::to_string(pyr.number_of_channels() - 1) + " attribute channels");
-    internal::for_each_channel(maps, [&](const auto& map, auto c) {
-      constexpr std::size_t dim = internal::Channel_traits<std::decay_t<decltype(map)> >::dimension;
-      if(dim != pyr.dimensions()[decltype(c)::value + 1])
-        throw std::invalid_argument("reconstruct: attribute map " + std::to_string(decltype(c)::value + 1) + " has dimension "
-                                    + std::to_string(dim) + ", the pyramid's channel has "
-                                    + std::to_string(pyr.dimensions()[decltype(c)::value + 1]));
-    });
-  }
-  const Geom_traits gt = choose_parameter<Geom_traits>(get_parameter(np, CGAL::internal_np::geom_traits));
-  Vertex_point_map vpm = choose_parameter(get_parameter(np, CGAL::internal_np::vertex_point),
-                                          get_property_map(CGAL::vertex_point, out));
-
   std::vector<std::vector<double> > values;
   std::vector<internal::Index> F;
   internal::reconstruct_arrays(pyr, level, values, F);
-
-  internal::clear_keeping_properties(out, 0);
-  const std::vector<internal::Index>& verts = pyr.vertices(level);
-  std::vector<vertex_descriptor> vd(pyr.number_of_input_vertices());
-  std::vector<vertex_descriptor> ordered;
-  ordered.reserve(verts.size());
-  const auto point = gt.construct_point_3_object();
-  for(internal::Index g : verts)
-  {
-    vd[g] = add_vertex(out);
-    put(vpm, vd[g], point(values[0][3 * g], values[0][3 * g + 1], values[0][3 * g + 2]));
-    ordered.push_back(vd[g]);
-  }
-  std::vector<vertex_descriptor> tri(3);
-  for(std::size_t p = 0; p < F.size() / 3; ++p)
-  {
-    for(int i = 0; i < 3; ++i)
-      tri[i] = vd[F[3 * p + i]];
-    CGAL::Euler::add_face(tri, out);
-  }
-  // channels, written through the same traits as they were read: values of M_level
-  std::vector<double> buf;
-  internal::for_each_channel(maps, [&](const auto& map, auto c) {
-    constexpr std::size_t dim = internal::Channel_traits<std::decay_t<decltype(map)> >::dimension;
-    buf.resize(verts.size() * dim);
-    for(std::size_t r = 0; r < verts.size(); ++r)
-      std::copy(values[decltype(c)::value + 1].begin() + std::size_t(verts[r]) * dim,
-                values[decltype(c)::value + 1].begin() + (std::size_t(verts[r]) + 1) * dim, buf.begin() + r * dim);
-    internal::write_channel(map, ordered, buf.data(), dim, 0);
-  });
+  internal::write_output_mesh(pyr, pyr.vertices(level), values, F, out, np);
 }
 
 } // namespace Surface_mesh_multiresolution
