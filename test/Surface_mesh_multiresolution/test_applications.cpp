@@ -13,7 +13,9 @@
 #include <CGAL/Surface_mesh_multiresolution.h>
 
 #include <cmath>
+#include <array>
 #include <limits>
+#include <set>
 #include <vector>
 
 namespace SMR = CGAL::Surface_mesh_multiresolution;
@@ -190,4 +192,96 @@ TEST_CASE("the noise estimate follows the noise, automatic denoising halves the 
   CHECK(e_denoised < 0.5 * e_noisy);
   // NB: on this i.i.d. noise one uniform Laplacian step is still about 4 % better; the quality
   // work against the smoothers (issue on applications) is not done
+}
+
+namespace {
+
+template <typename TM>
+int euler_characteristic(const TM& tm)
+{
+  return int(vertices(tm).size()) - int(edges(tm).size()) + int(faces(tm).size());
+}
+
+// every vertex of `out` is a vertex of `in` at exactly the same position
+bool is_exact_vertex_subset(const Mesh& out, const Mesh& in)
+{
+  std::set<std::array<double, 3> > points;
+  for(auto v : vertices(in)) points.insert({{in.point(v).x(), in.point(v).y(), in.point(v).z()}});
+  for(auto v : vertices(out))
+    if(!points.count({{out.point(v).x(), out.point(v).y(), out.point(v).z()}})) return false;
+  return true;
+}
+
+} // namespace
+
+TEST_CASE("adaptive reconstruction: 0 gives the input, infinity the coarsest, always a valid subset", "[adaptive]")
+{
+  std::vector<Mesh> meshes = {noisy_sphere(0.01), smr_test::planar_grid<Mesh>(14, 0.3)};
+  Mesh holes;
+  if(smr_test::read_cgal_mesh("meshes/elephant-with-holes.off", holes)) meshes.push_back(holes);
+  for(const Mesh& m : meshes)
+  {
+    const SMR::Pyramid<Mesh> pyr = SMR::decompose(m);
+    Mesh full, coarse, coarsest;
+    SMR::reconstruct_adaptively(pyr, full, 0.);
+    CHECK(smr_test::positions_in_order(full) == smr_test::positions_in_order(m));
+    CHECK(num_faces(full) == num_faces(m));
+    SMR::reconstruct_adaptively(pyr, coarse, std::numeric_limits<double>::infinity());
+    SMR::reconstruct(pyr, coarsest, SMR::parameters::level(pyr.number_of_levels()));
+    CHECK(smr_test::positions_in_order(coarse) == smr_test::positions_in_order(coarsest));
+    CHECK(num_faces(coarse) == num_faces(coarsest));
+    // thresholds in between: valid meshes of the input's topology, vertices exactly the input's
+    std::vector<double> lengths;
+    for(std::size_t j = 1; j <= pyr.number_of_levels(); ++j)
+      for(std::size_t i = 0; i < pyr.details(j, 0).size(); i += 3)
+      {
+        const double* d = pyr.details(j, 0).data() + i;
+        lengths.push_back(std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]));
+      }
+    std::sort(lengths.begin(), lengths.end());
+    std::size_t previous = num_vertices(m) + 1;
+    for(double quantile : {0.3, 0.6, 0.9, 0.99})
+    {
+      Mesh out;
+      SMR::reconstruct_adaptively(pyr, out, lengths[std::size_t(quantile * (lengths.size() - 1))]);
+      INFO("quantile " << quantile);
+      REQUIRE(CGAL::is_valid_polygon_mesh(out));
+      CHECK(CGAL::is_triangle_mesh(out));
+      CHECK(euler_characteristic(out) == euler_characteristic(m));
+      CHECK(is_exact_vertex_subset(out, m));
+      CHECK(num_vertices(out) <= previous);            // a larger threshold keeps no more vertices
+      CHECK(num_vertices(out) >= num_vertices(coarsest));
+      previous = num_vertices(out);
+    }
+  }
+}
+
+TEST_CASE("adaptive reconstruction to a vertex count, and colour guidance", "[adaptive][color]")
+{
+  // a sphere whose colour jumps at the equator: colour-guided reconstruction keeps the edge
+  Mesh m = smr_test::icosphere<Mesh>(4);
+  auto color = m.add_property_map<Mesh::Vertex_index, CGAL::IO::Color>("v:color").first;
+  for(auto v : vertices(m)) color[v] = m.point(v).z() > 0 ? CGAL::IO::Color(250, 20, 20) : CGAL::IO::Color(20, 20, 250);
+  const SMR::Pyramid<Mesh> pyr = SMR::decompose(m, SMR::parameters::vertex_attribute_maps(color));
+  Mesh by_geometry, by_colour;
+  auto c1 = by_geometry.add_property_map<Mesh::Vertex_index, CGAL::IO::Color>("v:color").first;
+  auto c2 = by_colour.add_property_map<Mesh::Vertex_index, CGAL::IO::Color>("v:color").first;
+  SMR::reconstruct_adaptively(pyr, by_geometry, 0., SMR::parameters::target_number_of_vertices(std::size_t(800))
+                                                      .vertex_attribute_maps(c1));
+  SMR::reconstruct_adaptively(pyr, by_colour, 0., SMR::parameters::target_number_of_vertices(std::size_t(800))
+                                                    .channel(std::size_t(1)).vertex_attribute_maps(c2));
+  CHECK(num_vertices(by_geometry) <= 800);
+  CHECK(num_vertices(by_colour) <= 800);
+  CHECK(num_vertices(by_colour) > 400);   // as many as fit, not far below the target
+  auto near_edge = [](const Mesh& mesh) {
+    std::size_t n = 0;
+    for(auto v : vertices(mesh)) n += std::abs(mesh.point(v).z()) < 0.1;
+    return n;
+  };
+  INFO("vertices near the colour edge: geometry-guided " << near_edge(by_geometry) << ", colour-guided " << near_edge(by_colour));
+  CHECK(near_edge(by_colour) > 2 * near_edge(by_geometry));
+  for(auto v : vertices(by_colour))   // exact colours where reconstructed
+    CHECK(c2[v] == (by_colour.point(v).z() > 0 ? CGAL::IO::Color(250, 20, 20) : CGAL::IO::Color(20, 20, 250)));
+  REQUIRE_THROWS_AS(SMR::reconstruct_adaptively(pyr, by_colour, -1.), std::invalid_argument);
+  REQUIRE_THROWS_AS(SMR::reconstruct_adaptively(pyr, by_colour, 1., SMR::parameters::channel(std::size_t(2))), std::invalid_argument);
 }
