@@ -2,16 +2,20 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 # The main job: installs what is missing, builds the examples and runs the demos on a real
 # mesh of CGAL's data set (or the mesh given as first argument), writing results to out/:
-# the pyramid (levels as PLY, exact reconstruction), then the relaxation operators.
+# the pipeline (pyramid, filters, denoising, adaptive reconstruction), the pyramid's levels
+# with the exact reconstruction, then the relaxation operators.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install_dependencies.sh
 BUILD=${SMR_BUILD_DIR:-build}
 cmake -S . -B "$BUILD" -DCMAKE_BUILD_TYPE=Release > /dev/null
-cmake --build "$BUILD" -j"$(nproc)" --target decompose_reconstruct relax_geometry relax_colors
+cmake --build "$BUILD" -j"$(nproc)" --target pipeline decompose_reconstruct relax_geometry relax_colors
 ROOT=$PWD
 mkdir -p out && cd out
-echo "== Mesh pyramid (Roy et al., Section 3): decomposition, levels, exact reconstruction =="
+echo "== Pipeline (Roy et al.): decompose, filter (Fig. 5), denoise (Fig. 6b), adaptive reconstruction (Fig. 6c) =="
+"$ROOT/$BUILD/examples/Surface_mesh_multiresolution/pipeline" "$@"
+echo
+echo "== Mesh pyramid (Section 3): decomposition, levels, exact reconstruction =="
 "$ROOT/$BUILD/examples/Surface_mesh_multiresolution/decompose_reconstruct" "$@"
 echo
 echo "== Relaxation operators (Fig. 2): one step of each scheme =="
