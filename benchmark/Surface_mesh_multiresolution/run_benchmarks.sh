@@ -7,7 +7,7 @@ ROOT="$(cd "$(dirname "$0")/../.." && pwd)"
 BUILD=${SMR_BENCH_BUILD_DIR:-$ROOT/build-bench}
 bash "$ROOT/scripts/install_dependencies.sh" libopenmesh-dev libmeshoptimizer-dev
 cmake -S "$ROOT" -B "$BUILD" -DCMAKE_BUILD_TYPE=Release -DSMR_BUILD_BENCHMARKS=ON -DSMR_BUILD_TESTS=OFF -DSMR_BUILD_EXAMPLES=OFF > /dev/null
-cmake --build "$BUILD" -j"$(nproc)" --target bench_relaxation bench_pyramid
+cmake --build "$BUILD" -j"$(nproc)" --target bench_relaxation bench_pyramid bench_denoise
 DATA="$ROOT/../shared/data"
 files=()
 if [ -d "$DATA" ]; then
@@ -22,3 +22,19 @@ echo "## bench_relaxation"
 echo
 echo "## bench_pyramid"
 "$BUILD/benchmark/Surface_mesh_multiresolution/bench_pyramid" "${files[@]}"
+if [ -d "$DATA" ]; then
+  pairs=()
+  for m in Fandisk0.3 Bunny0.2 Block0.4; do
+    for k in Noisy Original; do
+      [ -f "$BUILD/data/gd_${m}_$k.obj" ] || xz -dc "$DATA/gd_${m}_$k.obj.xz" > "$BUILD/data/gd_${m}_$k.obj"
+    done
+    pairs+=("$BUILD/data/gd_${m}_Noisy.obj" "$BUILD/data/gd_${m}_Original.obj")
+  done
+  for k in noisy original; do
+    [ -f "$BUILD/data/gd_nicolo_$k.obj" ] || xz -dc "$DATA/gd_nicolo_$k.obj.xz" > "$BUILD/data/gd_nicolo_$k.obj"
+  done
+  pairs+=("$BUILD/data/gd_nicolo_noisy.obj" "$BUILD/data/gd_nicolo_original.obj")
+  echo
+  echo "## bench_denoise"
+  "$BUILD/benchmark/Surface_mesh_multiresolution/bench_denoise" "${pairs[@]}"
+fi
