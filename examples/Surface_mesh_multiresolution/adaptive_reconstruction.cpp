@@ -1,0 +1,59 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Fig. 6c of Roy et al.: threshold reconstruction of a coloured mesh, guided by the geometry
+// and by the colours, to the same vertex budget: colour guidance keeps the vertices where the
+// colour changes. Usage: adaptive_reconstruction [coloured mesh] [fraction of vertices kept]
+// (the paper's kind of data: ../shared/data/frag_115.ply.xz, decompressed; without a file, a
+// CGAL mesh with a synthetic colour pattern)
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Surface_mesh.h>
+#include <CGAL/Surface_mesh_multiresolution.h>
+#include <CGAL/boost/graph/IO/polygon_mesh_io.h>
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+
+typedef CGAL::Exact_predicates_inexact_constructions_kernel K;
+typedef CGAL::Surface_mesh<K::Point_3>                      Mesh;
+typedef CGAL::IO::Color                                     Color;
+namespace SMR = CGAL::Surface_mesh_multiresolution;
+
+int main(int argc, char** argv)
+{
+  const std::string filename = argc > 1 ? argv[1] : CGAL::data_file_path("meshes/elephant.off");
+  const double fraction = argc > 2 ? std::stod(argv[2]) : 0.25;
+  Mesh mesh;
+  if(!CGAL::IO::read_polygon_mesh(filename, mesh) || !CGAL::is_triangle_mesh(mesh)) {
+    std::cerr << "Invalid input: " << filename << "\n"; return EXIT_FAILURE;
+  }
+  auto [color, has_color] = mesh.property_map<Mesh::Vertex_index, Color>("v:color");
+  if(!has_color) {   // a checkerboard of colours in space
+    color = mesh.add_property_map<Mesh::Vertex_index, Color>("v:color").first;
+    const CGAL::Bbox_3 b = CGAL::bbox_3(mesh.points().begin(), mesh.points().end());
+    const double cell = (b.xmax() - b.xmin()) / 5;
+    for(auto v : vertices(mesh)) {
+      const K::Point_3& p = mesh.point(v);
+      const int parity = int(std::floor((p.x() - b.xmin()) / cell) + std::floor((p.y() - b.ymin()) / cell)
+                             + std::floor((p.z() - b.zmin()) / cell)) % 2;
+      color[v] = parity ? Color(240, 200, 40) : Color(30, 60, 160);
+    }
+  }
+  const SMR::Pyramid<Mesh> pyr = SMR::decompose(mesh, SMR::parameters::vertex_attribute_maps(color));
+  const std::size_t budget = std::size_t(fraction * num_vertices(mesh));
+  std::printf("%s: %zu vertices, budget %zu\n", filename.c_str(), std::size_t(num_vertices(mesh)), budget);
+  for(std::size_t guide : {0, 1}) {
+    Mesh out;
+    auto out_color = out.add_property_map<Mesh::Vertex_index, Color>("v:color").first;
+    const double t = SMR::reconstruct_adaptively(pyr, out, 0., SMR::parameters::target_number_of_vertices(budget)
+                                                                 .channel(guide).vertex_attribute_maps(out_color));
+    // vertices with a neighbour of another colour: how much of the colour boundary survived
+    std::size_t on_boundary = 0;
+    for(auto v : vertices(out))
+      for(auto w : CGAL::vertices_around_target(v, out))
+        if(out_color[w] != out_color[v]) { ++on_boundary; break; }
+    const char* name = guide == 0 ? "adaptive_geometry.ply" : "adaptive_colour.ply";
+    std::printf("  %-22s threshold %-10.3g %7zu vertices, %6zu on a colour boundary\n", name, t,
+                std::size_t(num_vertices(out)), on_boundary);
+    CGAL::IO::write_polygon_mesh(name, out, CGAL::parameters::stream_precision(17));
+  }
+  return EXIT_SUCCESS;
+}
