@@ -131,10 +131,11 @@ public:
     const Geom_traits gt = choose_parameter<Geom_traits>(get_parameter(np, CGAL::internal_np::geom_traits));
     Vertex_point_map vpm = choose_parameter(get_parameter(np, CGAL::internal_np::vertex_point),
                                             get_property_map(CGAL::vertex_point, tm));
-    const bool geometry = choose_parameter(get_parameter(np, internal_np::relax_geometry), true);
-    const unsigned int iterations = choose_parameter(get_parameter(np, CGAL::internal_np::number_of_iterations), 1u);
-    const auto maps = internal::as_tuple(choose_parameter(get_parameter(np, internal_np::vertex_attribute_maps), std::tuple<>()));
-    constexpr std::size_t attribute_dimension = internal::Channel_tuple<std::decay_t<decltype(maps)> >::total_dimension();
+    const internal::Relaxed_channels<NamedParameters> channels(np);
+    const bool geometry = channels.geometry;
+    const unsigned int iterations = channels.iterations;
+    const auto& maps = channels.maps;
+    constexpr std::size_t attribute_dimension = internal::Relaxed_channels<NamedParameters>::attribute_dimension;
 
     std::vector<double> xyz, attributes, tmp;
     if(geometry)

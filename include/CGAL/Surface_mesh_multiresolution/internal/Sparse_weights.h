@@ -28,9 +28,6 @@ struct Sparse_weights
   std::vector<double> values;
 
   std::size_t number_of_rows() const { return offsets.size() - 1; }
-  std::size_t number_of_entries() const { return columns.size(); }
-
-  void clear() { offsets.assign(1, 0); columns.clear(); values.clear(); }
 
   // out[i] = sum_j w_ij in[j], where in/out hold `dimension` doubles per row. in != out.
   void apply(const double* in, double* out, std::size_t dimension) const

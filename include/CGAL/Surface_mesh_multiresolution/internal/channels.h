@@ -10,6 +10,7 @@
 
 #include <CGAL/Surface_mesh_multiresolution/internal/config.h>
 #include <CGAL/Surface_mesh_multiresolution/Attribute_traits.h>
+#include <CGAL/Surface_mesh_multiresolution/parameters.h>
 
 #include <boost/property_map/property_map.hpp>
 
@@ -132,6 +133,25 @@ void write_channels(const std::tuple<Maps...>& maps, const VertexRange& vertices
     offset += Channel_traits<std::decay_t<decltype(map)> >::dimension;
   });
 }
+
+// The parameters that say which channels a relaxation touches, as relax() and
+// Relaxation_operator::apply() read them.
+template <typename NamedParameters>
+struct Relaxed_channels
+{
+  bool geometry;
+  unsigned int iterations;
+  typedef std::decay_t<decltype(as_tuple(parameters::choose_parameter(
+      parameters::get_parameter(std::declval<NamedParameters>(), internal_np::vertex_attribute_maps), std::tuple<>())))> Maps;
+  Maps maps;
+  static constexpr std::size_t attribute_dimension = Channel_tuple<Maps>::total_dimension();
+
+  explicit Relaxed_channels(const NamedParameters& np)
+    : geometry(parameters::choose_parameter(parameters::get_parameter(np, internal_np::relax_geometry), true)),
+      iterations(parameters::choose_parameter(parameters::get_parameter(np, CGAL::internal_np::number_of_iterations), 1u)),
+      maps(as_tuple(parameters::choose_parameter(parameters::get_parameter(np, internal_np::vertex_attribute_maps), std::tuple<>())))
+  {}
+};
 
 } // namespace internal
 } // namespace Surface_mesh_multiresolution

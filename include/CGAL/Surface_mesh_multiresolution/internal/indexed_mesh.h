@@ -42,7 +42,6 @@ struct Indexed_mesh
   std::vector<Index> row_of;                 // get(vim, v) -> row
 
   std::size_t number_of_vertices() const { return vertices.size(); }
-  std::size_t number_of_faces() const { return triangles.size() / 3; }
 
   template <typename VertexIndexMap>
   Index row(vertex_descriptor v, VertexIndexMap vim) const { return row_of[static_cast<std::size_t>(get(vim, v))]; }

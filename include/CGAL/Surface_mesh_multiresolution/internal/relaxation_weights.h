@@ -61,7 +61,6 @@ struct Triangle_halfedges
   std::vector<Index> source, target, twin;     // per halfedge
   std::vector<Index> out_offsets, out, out_target;
 
-  std::size_t number_of_halfedges() const { return target.size(); }
   static Index next_in_face(Index h) { return h % 3 == 2 ? h - 2 : h + 1; }
   bool has_face(Index h) const { return h < 3 * nf; }
   bool is_border_edge(Index h) const { return !has_face(h) || !has_face(twin[h]); }
@@ -231,8 +230,6 @@ public:
     m_triangles = &triangles;
     m_mesh.build(n, triangles);
   }
-
-  const Triangle_halfedges& halfedges() const { return m_mesh; }
 
   // xyz: 3 doubles per row; fixed: nullptr or one flag per row (constrained vertices)
   void build(Relaxation_scheme scheme, const double* xyz, const unsigned char* fixed,
