@@ -22,19 +22,28 @@ echo "## bench_relaxation"
 echo
 echo "## bench_pyramid"
 "$BUILD/benchmark/Surface_mesh_multiresolution/bench_pyramid" "${files[@]}"
+pairs=()
 if [ -d "$DATA" ]; then
-  pairs=()
-  for m in Fandisk0.3 Bunny0.2 Block0.4; do
+  for m in Fandisk0.3 Fandisk0.7 Block0.4 Twelve0.5Impulsive SharpSphere0.3 Bunny0.2; do
     for k in Noisy Original; do
       [ -f "$BUILD/data/gd_${m}_$k.obj" ] || xz -dc "$DATA/gd_${m}_$k.obj.xz" > "$BUILD/data/gd_${m}_$k.obj"
     done
     pairs+=("$BUILD/data/gd_${m}_Noisy.obj" "$BUILD/data/gd_${m}_Original.obj")
   done
-  for k in noisy original; do
-    [ -f "$BUILD/data/gd_nicolo_$k.obj" ] || xz -dc "$DATA/gd_nicolo_$k.obj.xz" > "$BUILD/data/gd_nicolo_$k.obj"
+  for m in nicolo julius; do
+    for k in noisy original; do
+      [ -f "$BUILD/data/gd_${m}_$k.obj" ] || xz -dc "$DATA/gd_${m}_$k.obj.xz" > "$BUILD/data/gd_${m}_$k.obj"
+    done
+    pairs+=("$BUILD/data/gd_${m}_noisy.obj" "$BUILD/data/gd_${m}_original.obj")
   done
-  pairs+=("$BUILD/data/gd_nicolo_noisy.obj" "$BUILD/data/gd_nicolo_original.obj")
-  echo
-  echo "## bench_denoise"
-  "$BUILD/benchmark/Surface_mesh_multiresolution/bench_denoise" "${pairs[@]}"
 fi
+# CGAL meshes with Gaussian noise along the normals, 0.2 and 0.5 mean edge lengths
+MESHES="$BUILD/cgal_data/data/meshes"
+for m in elephant.off armadillo.off; do
+  for s in 0.2 0.5; do
+    [ -f "$MESHES/$m" ] && pairs+=(--synthetic "$MESHES/$m" "$s")
+  done
+done
+echo
+echo "## bench_denoise"
+"$BUILD/benchmark/Surface_mesh_multiresolution/bench_denoise" "${pairs[@]}"

@@ -62,6 +62,24 @@ inline void compute_details(const Sparse_weights& w, const Pyramid_level& level,
   }
 }
 
+// The details and corrections of one channel on one level from its values on all input
+// vertices (global numbers): the analysis of compute_details() for a pyramid whose
+// connectivity and weights are already known (re-analysis after a change of the values).
+inline void analyse_level_values(const Pyramid_level& level, std::size_t dim, const std::vector<double>& v,
+                                 std::vector<double>& details, std::vector<std::pair<Index, double> >& corrections)
+{
+  const std::size_t n = level.vertices.size();
+  std::vector<double> f(n * dim);
+  for(std::size_t r = 0; r < n; ++r)
+    std::copy(v.begin() + std::size_t(level.vertices[r]) * dim, v.begin() + (std::size_t(level.vertices[r]) + 1) * dim,
+              f.begin() + r * dim);
+  std::vector<Index> target_rows(level.collapse_targets.size());
+  for(std::size_t q = 0; q < target_rows.size(); ++q)
+    target_rows[q] = static_cast<Index>(std::lower_bound(level.vertices.begin(), level.vertices.end(), level.collapse_targets[q])
+                                        - level.vertices.begin());
+  compute_details(level.weights, level, target_rows, f, dim, details, corrections);
+}
+
 template <typename TriangleMesh, typename VertexPointMap, typename GeomTraits>
 bool does_collapse_flip_a_face(typename boost::graph_traits<TriangleMesh>::halfedge_descriptor h,
                                const TriangleMesh& tm, VertexPointMap vpm, const GeomTraits& gt)

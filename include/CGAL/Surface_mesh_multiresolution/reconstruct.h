@@ -63,9 +63,52 @@ inline void expand_faces(const Pyramid_level& lev, std::vector<Index>& F, std::v
   F.swap(G);
 }
 
+// The values of one channel on M_k from those on M_{k+1}: Eq. 6 (odd vertices) then Eq. 7
+// (even vertices) with the level's weights, the given details and exactness corrections.
+// `v` holds the channel for all input vertices (global numbers); only M_k's entries change.
+inline void reconstruct_level_values(const Pyramid_level& lev, std::size_t dim, const std::vector<double>& d,
+                                     const std::vector<std::pair<Index, double> >& corrections,
+                                     const std::vector<unsigned char>& is_odd, std::vector<double>& v,
+                                     std::vector<double>& state, std::vector<double>& prediction)
+{
+  const std::size_t nk = lev.vertices.size();
+  state.resize(nk * dim);
+  prediction.resize(nk * dim);
+  for(std::size_t r = 0; r < nk; ++r)
+    std::copy(v.begin() + std::size_t(lev.vertices[r]) * dim, v.begin() + (std::size_t(lev.vertices[r]) + 1) * dim,
+              state.begin() + r * dim);
+  for(std::size_t q = 0; q < lev.odd_rows.size(); ++q)   // an odd vertex starts from the value of its target
+    std::copy(v.begin() + std::size_t(lev.collapse_targets[q]) * dim, v.begin() + (std::size_t(lev.collapse_targets[q]) + 1) * dim,
+              state.begin() + std::size_t(lev.odd_rows[q]) * dim);
+  // Eq. 6: odd vertices (corrected before the even vertices read them)
+  lev.weights.apply_row_list(state.data(), prediction.data(), dim, lev.odd_rows.data(), lev.odd_rows.size());
+  for(Index r : lev.odd_rows)
+    for(std::size_t i = r * dim; i < (r + 1) * dim; ++i)
+      state[i] = prediction[i] + d[i];
+  for(const auto& cr : corrections)
+    if(is_odd[cr.first / dim])
+      state[cr.first] = state[cr.first] + cr.second;
+  // Eq. 7: even vertices, from the intermediate mesh
+  lev.weights.apply_row_list(state.data(), prediction.data(), dim, lev.even_rows.data(), lev.even_rows.size());
+  for(Index r : lev.even_rows)
+    for(std::size_t i = r * dim; i < (r + 1) * dim; ++i)
+      state[i] = prediction[i] + d[i];
+  for(const auto& cr : corrections)
+    if(!is_odd[cr.first / dim])
+      state[cr.first] = state[cr.first] + cr.second;
+  for(std::size_t r = 0; r < nk; ++r)
+    std::copy(state.begin() + r * dim, state.begin() + (r + 1) * dim, v.begin() + std::size_t(lev.vertices[r]) * dim);
+}
+
+inline void odd_row_flags(const Pyramid_level& lev, std::vector<unsigned char>& is_odd)
+{
+  is_odd.assign(lev.vertices.size(), 0);
+  for(Index r : lev.odd_rows)
+    is_odd[r] = 1;
+}
+
 // The values of every channel and the face array of level `level`, rebuilt from the
-// coarsest mesh: vertex splits on the face array, then Eq. 6 (odd vertices) and Eq. 7
-// (even vertices) with the stored weights and details.
+// coarsest mesh: vertex splits on the face array, then Eq. 6 and 7 per level.
 template <typename TriangleMesh>
 void reconstruct_arrays(const Pyramid<TriangleMesh>& pyr, std::size_t level,
                         std::vector<std::vector<double> >& values, std::vector<Index>& F)
@@ -90,44 +133,9 @@ void reconstruct_arrays(const Pyramid<TriangleMesh>& pyr, std::size_t level,
   {
     const Pyramid_level& lev = pyr.levels()[k];
     expand_faces(lev, F, G);
-
-    // values of M_k
-    const std::size_t nk = lev.vertices.size();
-    is_odd.assign(nk, 0);
-    for(Index r : lev.odd_rows)
-      is_odd[r] = 1;
+    odd_row_flags(lev, is_odd);
     for(std::size_t c = 0; c < nc; ++c)
-    {
-      const std::size_t dim = pyr.dimensions()[c];
-      std::vector<double>& v = values[c];
-      state.resize(nk * dim);
-      prediction.resize(nk * dim);
-      for(std::size_t r = 0; r < nk; ++r)
-        std::copy(v.begin() + std::size_t(lev.vertices[r]) * dim, v.begin() + (std::size_t(lev.vertices[r]) + 1) * dim,
-                  state.begin() + r * dim);
-      for(std::size_t q = 0; q < lev.odd_rows.size(); ++q)   // an odd vertex starts from the value of its target
-        std::copy(v.begin() + std::size_t(lev.collapse_targets[q]) * dim, v.begin() + (std::size_t(lev.collapse_targets[q]) + 1) * dim,
-                  state.begin() + std::size_t(lev.odd_rows[q]) * dim);
-      const std::vector<double>& d = lev.details[c];
-      // Eq. 6: odd vertices (corrected before the even vertices read them)
-      lev.weights.apply_row_list(state.data(), prediction.data(), dim, lev.odd_rows.data(), lev.odd_rows.size());
-      for(Index r : lev.odd_rows)
-        for(std::size_t i = r * dim; i < (r + 1) * dim; ++i)
-          state[i] = prediction[i] + d[i];
-      for(const auto& cr : lev.corrections[c])
-        if(is_odd[cr.first / dim])
-          state[cr.first] = state[cr.first] + cr.second;
-      // Eq. 7: even vertices, from the intermediate mesh
-      lev.weights.apply_row_list(state.data(), prediction.data(), dim, lev.even_rows.data(), lev.even_rows.size());
-      for(Index r : lev.even_rows)
-        for(std::size_t i = r * dim; i < (r + 1) * dim; ++i)
-          state[i] = prediction[i] + d[i];
-      for(const auto& cr : lev.corrections[c])
-        if(!is_odd[cr.first / dim])
-          state[cr.first] = state[cr.first] + cr.second;
-      for(std::size_t r = 0; r < nk; ++r)
-        std::copy(state.begin() + r * dim, state.begin() + (r + 1) * dim, v.begin() + std::size_t(lev.vertices[r]) * dim);
-    }
+      reconstruct_level_values(lev, pyr.dimensions()[c], lev.details[c], lev.corrections[c], is_odd, values[c], state, prediction);
   }
 }
 

@@ -1,0 +1,130 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Approximation quality at equal vertex counts: for some levels of the pyramid, the level
+// reconstruction (M_k), the geometry-guided adaptive reconstruction to the same vertex count,
+// CGAL SMS edge_collapse with Garland-Heckbert plane policies, and meshopt_simplify, all to
+// |M_k| vertices. Errors are deterministic (every vertex, AABB trees), in 1e-3 of the
+// bounding-box diagonal: the RMS and the maximum distance from the input's vertices to the
+// approximation, and a two-sided Hausdorff estimate (the maximum of that and of the distances
+// from the approximation's vertices to the input surface).
+// Usage: bench_quality [mesh files...]   (default: CGAL data meshes)
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Surface_mesh.h>
+#include <CGAL/Surface_mesh_multiresolution.h>
+#include <CGAL/AABB_face_graph_triangle_primitive.h>
+#include <CGAL/AABB_traits.h>
+#include <CGAL/AABB_tree.h>
+#include <CGAL/Polygon_mesh_processing/bbox.h>
+#include <CGAL/boost/graph/IO/polygon_mesh_io.h>
+#include <CGAL/Surface_mesh_simplification/edge_collapse.h>
+#include <CGAL/Surface_mesh_simplification/Policies/Edge_collapse/GarlandHeckbert_plane_policies.h>
+
+#include <meshoptimizer.h>
+
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <string>
+#include <vector>
+
+typedef CGAL::Exact_predicates_inexact_constructions_kernel K;
+typedef CGAL::Surface_mesh<K::Point_3>                      Mesh;
+typedef CGAL::AABB_tree<CGAL::AABB_traits<K, CGAL::AABB_face_graph_triangle_primitive<Mesh> > > Tree;
+namespace SMR = CGAL::Surface_mesh_multiresolution;
+namespace SMS = CGAL::Surface_mesh_simplification;
+
+struct Error { double rms = 0, max = 0, hausdorff = 0; std::size_t vertices = 0; };
+
+Error error(const Mesh& input, const Tree& input_tree, const Mesh& approx, double diagonal)
+{
+  Error e;
+  e.vertices = num_vertices(approx);
+  Tree tree(faces(approx).first, faces(approx).second, approx);
+  tree.accelerate_distance_queries();
+  double sum = 0;
+  for(auto v : vertices(input))
+  {
+    const double d = std::sqrt(CGAL::to_double(tree.squared_distance(input.point(v))));
+    sum += d * d;
+    e.max = (std::max)(e.max, d);
+  }
+  e.rms = std::sqrt(sum / double(num_vertices(input)));
+  e.hausdorff = e.max;
+  for(auto v : vertices(approx))
+    e.hausdorff = (std::max)(e.hausdorff, std::sqrt(CGAL::to_double(input_tree.squared_distance(approx.point(v)))));
+  e.rms *= 1e3 / diagonal; e.max *= 1e3 / diagonal; e.hausdorff *= 1e3 / diagonal;
+  return e;
+}
+
+int main(int argc, char** argv)
+{
+  std::vector<std::string> files;
+  for(int i = 1; i < argc; ++i) files.push_back(argv[i]);
+  if(files.empty())
+    for(const char* f : {"meshes/bunny00.off", "meshes/elephant.off", "meshes/armadillo.off"})
+      files.push_back(CGAL::data_file_path(f));
+  std::printf("Errors in 1e-3 of the bounding-box diagonal: RMS / max from the input vertices, and the two-sided Hausdorff estimate\n\n");
+  std::printf("| mesh | vertices | SMR level M_k | SMR adaptive | CGAL SMS GH | meshopt_simplify | adaptive / SMS (Hausdorff) | adaptive / SMS (RMS) |\n");
+  std::printf("|---|---:|---|---|---|---|---:|---:|\n");
+  for(const std::string& file : files)
+  {
+    Mesh mesh;
+    if(!CGAL::IO::read_polygon_mesh(file, mesh) || !CGAL::is_triangle_mesh(mesh) || num_vertices(mesh) < 100)
+    {
+      std::cerr << "cannot read " << file << " as a triangle mesh: skipped\n";
+      continue;
+    }
+    const CGAL::Bbox_3 b = CGAL::Polygon_mesh_processing::bbox(mesh);
+    const double diagonal = std::sqrt(CGAL::square(b.xmax() - b.xmin()) + CGAL::square(b.ymax() - b.ymin()) + CGAL::square(b.zmax() - b.zmin()));
+    Tree tree(faces(mesh).first, faces(mesh).second, mesh);
+    tree.accelerate_distance_queries();
+    const std::size_t n = num_vertices(mesh);
+    const SMR::Pyramid<Mesh> pyr = SMR::decompose(mesh, SMR::parameters::minimum_number_of_vertices(n / 100));
+    std::vector<float> xyz;
+    std::vector<unsigned int> indices;
+    for(auto v : mesh.vertices()) xyz.insert(xyz.end(), {float(mesh.point(v).x()), float(mesh.point(v).y()), float(mesh.point(v).z())});
+    for(auto f : mesh.faces())
+      for(auto v : CGAL::vertices_around_face(mesh.halfedge(f), mesh)) indices.push_back(v.idx());
+    const std::string name = file.substr(file.find_last_of('/') + 1);
+    for(double fraction : {0.25, 0.05, 0.01})
+    {
+      // the first level with at most fraction * n vertices
+      std::size_t k = 1;
+      while(k < pyr.number_of_levels() && double(pyr.number_of_vertices(k)) > fraction * double(n)) ++k;
+      const std::size_t target = pyr.number_of_vertices(k);
+      Mesh level, adaptive, sms = mesh, mo;
+      SMR::reconstruct(pyr, level, SMR::parameters::level(k));
+      SMR::reconstruct_adaptively(pyr, adaptive, 0., SMR::parameters::target_number_of_vertices(target));
+      {
+        SMS::GarlandHeckbert_plane_policies<Mesh, K> gh(sms);
+        auto stop = [&sms, target](const auto&, const auto&, std::size_t, std::size_t) { return sms.number_of_vertices() <= target; };
+        SMS::edge_collapse(sms, stop, CGAL::parameters::get_cost(gh.get_cost()).get_placement(gh.get_placement()));
+        sms.collect_garbage();
+      }
+      {
+        // meshoptimizer targets an index count (faces ~ 2 x vertices) and keeps vertex positions
+        std::vector<unsigned int> out(indices.size());
+        const std::size_t count = meshopt_simplify(out.data(), indices.data(), indices.size(), xyz.data(), xyz.size() / 3,
+                                                   3 * sizeof(float), 6 * target, 1.f);
+        std::vector<Mesh::Vertex_index> vmap(n);
+        std::vector<char> used(n, 0);
+        for(std::size_t i = 0; i < count; ++i)
+          if(!used[out[i]]) { used[out[i]] = 1; vmap[out[i]] = mo.add_vertex(mesh.point(Mesh::Vertex_index(out[i]))); }
+        for(std::size_t i = 0; i + 2 < count; i += 3)
+          mo.add_face(vmap[out[i]], vmap[out[i + 1]], vmap[out[i + 2]]);
+      }
+      const Error el = error(mesh, tree, level, diagonal), ea = error(mesh, tree, adaptive, diagonal),
+                  es = error(mesh, tree, sms, diagonal), em = error(mesh, tree, mo, diagonal);
+      auto cell = [](const Error& e) {
+        static char buffer[4][96];
+        static int i = 0;
+        i = (i + 1) % 4;
+        std::snprintf(buffer[i], sizeof buffer[i], "%.2f / %.2f, H %.2f (%zu v)", e.rms, e.max, e.hausdorff, e.vertices);
+        return buffer[i];
+      };
+      std::printf("| %s | %zu → %zu | %s | %s | %s | %s | %.2f | %.2f |\n", name.c_str(), n, target, cell(el), cell(ea), cell(es),
+                  cell(em), ea.hausdorff / es.hausdorff, ea.rms / es.rms);
+      std::fflush(stdout);
+    }
+  }
+  return 0;
+}
