@@ -19,6 +19,10 @@
 #include <OpenMesh/Tools/Decimater/ModIndependentSetsT.hh>
 #include <OpenMesh/Tools/Decimater/ModQuadricT.hh>
 #include <meshoptimizer.h>
+#ifdef CGAL_LINKED_WITH_TBB
+#include <tbb/global_control.h>
+#include <tbb/info.h>
+#endif
 
 #include <sys/resource.h>
 #include <sys/wait.h>
@@ -94,10 +98,62 @@ int memory_mode(const char* file)
   return 0;
 }
 
+// `bench_pyramid --scaling FILE...`: decomposition and reconstruction times for 1, 2, 4, ...
+// threads up to the machine's, and whether every pyramid is bit-identical to the 1-thread one
+int scaling_mode(int argc, char** argv)
+{
+#ifdef CGAL_LINKED_WITH_TBB
+  const int available = tbb::info::default_concurrency();
+  std::printf("| mesh | vertices | threads | decompose (s) | speed-up | reconstruct (s) | speed-up | identical to 1 thread |\n");
+  std::printf("|---|---:|---:|---:|---:|---:|---:|---|\n");
+  for(int i = 2; i < argc; ++i)
+  {
+    Mesh mesh;
+    if(!CGAL::IO::read_polygon_mesh(argv[i], mesh) || !CGAL::is_triangle_mesh(mesh)) continue;
+    const std::size_t n = mesh.number_of_vertices();
+    std::vector<double> reference;
+    double d1 = 0, r1 = 0;
+    for(int t = 1; t <= available; t = (t == available ? available + 1 : (std::min)(2 * t, available)))
+    {
+      tbb::global_control limit(tbb::global_control::max_allowed_parallelism, std::size_t(t));
+      double best_d = 1e30, best_r = 1e30;
+      SMR::Pyramid<Mesh> pyr;
+      Mesh out;
+      for(int rep = 0; rep < 3; ++rep)
+      {
+        CGAL::Real_timer timer;
+        timer.start();
+        pyr = SMR::decompose(mesh, SMR::parameters::minimum_number_of_vertices(n / 100));
+        best_d = (std::min)(best_d, timer.time());
+        timer.reset();
+        SMR::reconstruct(pyr, out);
+        best_r = (std::min)(best_r, timer.time());
+      }
+      std::vector<double> values;   // all details and coarse values, to compare bit for bit
+      for(std::size_t j = 1; j <= pyr.number_of_levels(); ++j)
+        values.insert(values.end(), pyr.details(j, 0).begin(), pyr.details(j, 0).end());
+      values.insert(values.end(), pyr.coarse_values()[0].begin(), pyr.coarse_values()[0].end());
+      if(t == 1) { reference = values; d1 = best_d; r1 = best_r; }
+      const std::string name = std::string(argv[i]).substr(std::string(argv[i]).find_last_of('/') + 1);
+      std::printf("| %s | %zu | %d | %.3f | %.2f | %.3f | %.2f | %s |\n", name.c_str(), n, t, best_d, d1 / best_d, best_r,
+                  r1 / best_r, values == reference ? "yes" : "NO");
+      std::fflush(stdout);
+    }
+  }
+  return 0;
+#else
+  (void)argc; (void)argv;
+  std::printf("built without TBB: no scaling to measure\n");
+  return 0;
+#endif
+}
+
 int main(int argc, char** argv)
 {
   if(argc == 3 && std::string(argv[1]) == "--memory")
     return memory_mode(argv[2]);
+  if(argc >= 3 && std::string(argv[1]) == "--scaling")
+    return scaling_mode(argc, argv);
   std::vector<std::string> files;
   for(int i = 1; i < argc; ++i) files.push_back(argv[i]);
   if(files.empty())
