@@ -109,7 +109,7 @@ void evaluate(const std::string& name, const Mesh& noisy, const Mesh& clean)
   const Errors e0 = errors(noisy, clean, tree, edge);
 
   const auto t0 = std::chrono::steady_clock::now();
-  SMR::Pyramid<Mesh> pyr = SMR::decompose(noisy);
+  SMR::Pyramid<Mesh> pyr = std::getenv("SMR_UNIFORM") ? SMR::decompose(noisy, SMR::parameters::relaxation_scheme(SMR::Relaxation_scheme::UNIFORM)) : SMR::decompose(noisy);
   const auto t1 = std::chrono::steady_clock::now();
   SMR::Pyramid<Mesh> p = pyr;
   if(std::getenv("SMR_PASSES")) SMR::denoise(p, CGAL::parameters::number_of_iterations(unsigned(std::atoi(std::getenv("SMR_PASSES"))))); else SMR::denoise(p);
