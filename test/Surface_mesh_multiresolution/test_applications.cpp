@@ -235,6 +235,34 @@ TEST_CASE("the noise estimate follows the noise, automatic denoising halves the 
   REQUIRE_THROWS_AS(SMR::denoise(colours, SMR::parameters::channel(std::size_t(1))), std::invalid_argument);
 }
 
+TEST_CASE("denoising an attribute channel: a noisy scalar field on a clean sphere", "[denoise][channels]")
+{
+  Mesh m = smr_test::icosphere<Mesh>(5);
+  auto t = m.add_property_map<Mesh::Vertex_index, double>("v:t").first;
+  CGAL::Random rng(5);
+  double noise = 0;
+  for(auto v : vertices(m))
+  {
+    const double e = rng.get_double(-0.05, 0.05);
+    t[v] = m.point(v).z() + e;      // a smooth field (linear in z) plus uniform noise
+    noise += e * e;
+  }
+  noise = std::sqrt(noise / double(num_vertices(m)));
+  SMR::Pyramid<Mesh> pyr = SMR::decompose(m, SMR::parameters::vertex_attribute_maps(t));
+  const double sigma = SMR::estimate_noise(pyr, SMR::parameters::channel(std::size_t(1)));
+  CHECK(sigma == Approx(noise).epsilon(0.3));   // uniform noise of deviation 0.05 / sqrt(3)
+  SMR::denoise(pyr, SMR::parameters::channel(std::size_t(1)));
+  Mesh out;
+  auto ot = out.add_property_map<Mesh::Vertex_index, double>("v:t").first;
+  SMR::reconstruct(pyr, out, SMR::parameters::vertex_attribute_maps(ot));
+  CHECK(smr_test::positions_in_order(out) == smr_test::positions_in_order(m));   // geometry untouched
+  double error = 0;
+  for(auto v : vertices(out)) error += CGAL::square(ot[v] - out.point(v).z());
+  error = std::sqrt(error / double(num_vertices(out)));
+  INFO("RMS error of the field: noisy " << noise << ", denoised " << error);
+  CHECK(error < 0.4 * noise);
+}
+
 namespace {
 
 template <typename TM>

@@ -95,20 +95,36 @@ void soft_threshold(Pyramid<TriangleMesh>& pyr, double t, const NamedParameters&
 /// \cond SKIP_IN_MANUAL
 namespace internal {
 
-// Rescaling of a detail's noise: on M_0, d = f - R f, so iid noise of deviation sigma gives a
-// detail component of deviation sigma * sqrt((1 - lambda_ii)^2 + sum_{j != i} lambda_ij^2),
-// averaged here over the rows (about 1.08 on regular meshes).
-inline double detail_noise_factor(const Sparse_weights& w)
+// Rescaling of the noise seen in the residual d - R d = (I - R)^2 f of the finest details: for
+// iid noise of deviation sigma, a residual component has deviation sigma times the norm of
+// its row of (I - R)^2; this is the root mean square of that norm over the rows (about 1.5
+// for uniform weights on a regular mesh), computed row by row with a scratch array
+// (O(n valence^2)).
+inline double residual_noise_factor(const Sparse_weights& w)
 {
+  const std::size_t n = w.number_of_rows();
+  if(n == 0)
+    return 1.;
+  std::vector<double> row(n, 0.);   // row i of (I - R)^2
+  std::vector<char> seen(n, 0);
+  std::vector<Index> touched;
   double sum = 0.;
-  for(std::size_t i = 0; i < w.number_of_rows(); ++i)
+  for(std::size_t i = 0; i < n; ++i)
   {
-    double s = 0., diagonal = 0.;
+    touched.clear();
+    auto add = [&](Index j, double v) { if(!seen[j]) { seen[j] = 1; touched.push_back(j); } row[j] += v; };
+    // (I - R)^2 = I - 2 R + R R
+    add(static_cast<Index>(i), 1.);
     for(Index k = w.offsets[i]; k < w.offsets[i + 1]; ++k)
-      if(w.columns[k] == i) diagonal += w.values[k]; else s += w.values[k] * w.values[k];
-    sum += (1. - diagonal) * (1. - diagonal) + s;
+    {
+      add(w.columns[k], -2. * w.values[k]);
+      const Index j = w.columns[k];
+      for(Index l = w.offsets[j]; l < w.offsets[j + 1]; ++l)
+        add(w.columns[l], w.values[k] * w.values[l]);
+    }
+    for(Index j : touched) { sum += row[j] * row[j]; row[j] = 0.; seen[j] = 0; }
   }
-  return w.number_of_rows() > 0 ? std::sqrt(sum / double(w.number_of_rows())) : 1.;
+  return std::sqrt(sum / double(n));
 }
 
 // Donoho's robust deviation: median absolute deviation / 0.6745 (x is reordered)
@@ -180,7 +196,23 @@ inline double noise_of_finest_details(const Sparse_weights& w, const std::vector
     for(std::size_t i = 0; i < x.size(); ++i)
       x[i] = d[i] - smooth[i];
   }
-  return median_absolute_deviation(x) / detail_noise_factor(w);
+  return median_absolute_deviation(x) / residual_noise_factor(w);
+}
+
+// The finest level of the pyramid with uniform weights on its connectivity (rows of M_0 =
+// input vertices): on a noisy mesh the cotangent and SOD weights follow the noise, the
+// uniform ones do not. Used to measure and to remove noise.
+template <typename TriangleMesh>
+void uniform_finest_level(const Pyramid<TriangleMesh>& pyr, const std::vector<double>& positions, const std::vector<Index>& F,
+                          Pyramid_level& finest)
+{
+  finest = pyr.levels()[0];
+  finest.details.clear();
+  finest.corrections.clear();
+  Relaxation_weight_builder builder;
+  std::vector<Relaxation_row_rule> rules;
+  builder.set_connectivity(positions.size() / 3, F);
+  builder.build(Relaxation_scheme::UNIFORM, positions.data(), nullptr, finest.weights, rules);
 }
 
 } // namespace internal
@@ -189,18 +221,21 @@ inline double noise_of_finest_details(const Sparse_weights& w, const std::vector
 /*!
  * \ingroup PkgSurfaceMeshMultiresolutionRef
  * estimates the standard deviation \f$ \sigma \f$ of the noise of a channel from its finest
- * details \f$ D_1 \f$ with Donoho's robust estimator: the median absolute deviation divided by
- * 0.6745 (exact for Gaussian noise, insensitive to the few large details of features).
+ * details with Donoho's robust estimator: the median absolute deviation divided by 0.6745
+ * (exact for Gaussian noise, insensitive to the few large details of features).
  *
- * The smooth part of the details is taken out first: relaxation shrinks curved regions, so even
- * a noise-free surface has details (about the curvature times the squared edge length, along
- * the normal); the estimator sees the residual \f$ d - R d \f$ of the details relaxed with the
- * level's own weights. For the geometry (channel 0) it uses the component of that residual
- * along the vertex normal (normals of the input relaxed once), since the tangential
- * components of the details mostly describe the sampling, not the noise: the result is the
- * deviation of the noise along the normal, in the units of the coordinates. For the other
- * channels it uses all components. The value is rescaled to the deviation of one vertex's
- * noise (the detail of a vertex mixes its noise with that of its neighbours).
+ * The finest level is analysed with uniform weights on its connectivity (the cotangent and SOD
+ * weights of a noisy mesh follow the noise and hide part of it). The smooth part of the
+ * details is taken out: relaxation shrinks curved regions, so even a noise-free surface has
+ * details (about the curvature times the squared edge length, along the normal); the
+ * estimator sees the residual \f$ d - R d = (I - R)^2 f \f$, rescaled by the exact factor
+ * that \f$ (I - R)^2 \f$ applies to independent noise. For the geometry (channel 0) it uses
+ * the component of that residual along the vertex normal (normals of the input relaxed
+ * once): the result is the deviation of the noise along the normal, in the units of the
+ * coordinates. For the other channels it uses all components.
+ *
+ * Measured on the standard noisy/clean pairs (Gaussian noise along the normals of 0.2 to 0.7
+ * mean edge lengths): within 4 % of the deviation of `noisy - clean` up to 0.4 edges.
  * \param pyr the pyramid
  * \param np optional: `channel` (default 0, the geometry)
  * \returns 0 for a pyramid without levels
@@ -211,15 +246,18 @@ double estimate_noise(const Pyramid<TriangleMesh>& pyr, const NamedParameters& n
   const std::size_t c = internal::chosen_channel(pyr, np, "estimate_noise");
   if(pyr.number_of_levels() == 0 || pyr.details(1, c).empty())
     return 0.;
-  const internal::Sparse_weights& w = pyr.levels()[0].weights;
-  if(c != 0)
-    return internal::noise_of_finest_details(w, pyr.details(1, c), pyr.channel_dimension(c), nullptr);
   std::vector<std::vector<double> > values;
   std::vector<internal::Index> F;
   internal::reconstruct_arrays(pyr, 0, values, F);
-  std::vector<double> normals;
-  internal::smoothed_vertex_normals(w, values[0], F, normals);
-  return internal::noise_of_finest_details(w, pyr.details(1, 0), 3, &normals);
+  internal::Pyramid_level finest;
+  internal::uniform_finest_level(pyr, values[0], F, finest);
+  std::vector<double> d, normals;
+  std::vector<std::pair<internal::Index, double> > corrections;
+  const std::size_t dim = pyr.channel_dimension(c);
+  internal::analyse_level_values(finest, dim, values[c], d, corrections);
+  if(c == 0)
+    internal::smoothed_vertex_normals(finest.weights, values[0], F, normals);
+  return internal::noise_of_finest_details(finest.weights, d, dim, c == 0 ? &normals : nullptr);
 }
 
 /*!
@@ -269,13 +307,8 @@ double denoise(Pyramid<TriangleMesh>& pyr, const NamedParameters& np = parameter
   internal::reconstruct_arrays(pyr, 0, values, F);
   std::vector<double>& x = values[c];   // the channel on M_0
   // the finest level with uniform weights on its connectivity (rows of M_0 = input vertices)
-  internal::Pyramid_level finest = pyr.levels()[0];
-  {
-    internal::Relaxation_weight_builder builder;
-    std::vector<Relaxation_row_rule> rules;
-    builder.set_connectivity(n0, F);
-    builder.build(Relaxation_scheme::UNIFORM, values[0].data(), nullptr, finest.weights, rules);
-  }
+  internal::Pyramid_level finest;
+  internal::uniform_finest_level(pyr, values[0], F, finest);
   std::vector<double> d, normals, state, prediction;
   std::vector<std::pair<internal::Index, double> > corrections;
   std::vector<unsigned char> is_odd;
