@@ -9,7 +9,7 @@ cd "$(dirname "$0")/.."
 bash scripts/install_dependencies.sh
 BUILD=${SMR_BUILD_DIR:-build}
 cmake -S . -B "$BUILD" -DCMAKE_BUILD_TYPE=Release > /dev/null
-cmake --build "$BUILD" -j"$(nproc)" --target pipeline decompose_reconstruct relax_geometry relax_colors
+cmake --build "$BUILD" -j"$(nproc)" --target pipeline decompose_reconstruct relax_geometry relax_colors filter_bands adaptive_reconstruction
 ROOT=$PWD
 mkdir -p out && cd out
 echo "== Pipeline (Roy et al.): decompose, filter (Fig. 5), denoise (Fig. 6b), adaptive reconstruction (Fig. 6c) =="
@@ -23,5 +23,18 @@ echo "== Relaxation operators (Fig. 2): one step of each scheme =="
 echo
 echo "== Colour relaxation (Fig. 3): weights from the geometry, applied to colours =="
 "$ROOT/$BUILD/examples/Surface_mesh_multiresolution/relax_colors"
+SHARED="$ROOT/../shared/data"
+if [ -f "$SHARED/venus-original.off.xz" ] && [ -f "$SHARED/frag_115.ply.xz" ]; then
+  # the paper's kind of data, when the project's data folder is there
+  mkdir -p data
+  [ -f data/venus-original.off ] || xz -dc "$SHARED/venus-original.off.xz" > data/venus-original.off
+  [ -f data/frag_115.ply ] || xz -dc "$SHARED/frag_115.ply.xz" > data/frag_115.ply
+  echo
+  echo "== Filtering bands (Fig. 5) on the Venus head =="
+  "$ROOT/$BUILD/examples/Surface_mesh_multiresolution/filter_bands" data/venus-original.off
+  echo
+  echo "== Adaptive reconstruction (Fig. 6c) of a scan with real colours, 10 % of the vertices =="
+  "$ROOT/$BUILD/examples/Surface_mesh_multiresolution/adaptive_reconstruction" data/frag_115.ply 0.1
+fi
 echo
 echo "Results written to $ROOT/out: $(ls | tr '\n' ' ')"
