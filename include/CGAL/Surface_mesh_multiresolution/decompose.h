@@ -257,9 +257,12 @@ Pyramid<TriangleMesh> decompose(const TriangleMesh& tm, const NamedParameters& n
   internal::Relaxation_weight_builder builder;
   std::vector<Index> tri_rows;
   std::vector<double> f;
-  struct Candidate { double cost; Index o, e; halfedge_descriptor h; };
+  // one candidate per halfedge (six per vertex): kept small, this array and `order` are the
+  // largest temporary memory of a level
+  struct Candidate { double cost; halfedge_descriptor h; };
+  struct Collapse { Index o, e; halfedge_descriptor h; };   // an accepted collapse o -> e
   std::vector<Candidate> candidates;
-  std::vector<std::pair<double, Index> > order;
+  std::vector<Index> order;
   std::vector<unsigned char> cost_ok;
   std::vector<unsigned char> on_border(n0, 0);
 
@@ -277,11 +280,10 @@ Pyramid<TriangleMesh> decompose(const TriangleMesh& tm, const NamedParameters& n
     candidates.clear();
     for(halfedge_descriptor h : halfedges(work))
     {
-      const vertex_descriptor o = source(h, work), e = target(h, work);
-      const Index go = get(gid, o);
+      const Index go = get(gid, source(h, work));
       if(on_border[go] && !is_border_edge(h, work))
         continue;                                     // border vertices move along the border only
-      candidates.push_back(Candidate{0., go, get(gid, e), h});
+      candidates.push_back(Candidate{0., h});
     }
     // the costs only read the mesh and the quadrics: evaluated in parallel (TBB), each into its own slot
     cost_ok.assign(candidates.size(), 0);
@@ -296,16 +298,18 @@ Pyramid<TriangleMesh> decompose(const TriangleMesh& tm, const NamedParameters& n
     order.clear();
     for(std::size_t i = 0; i < candidates.size(); ++i)
       if(cost_ok[i])
-        order.push_back(std::make_pair(candidates[i].cost, static_cast<Index>(i)));
-    internal::parallel_sort(order.begin(), order.end());   // (cost, index) pairs are all different
+        order.push_back(static_cast<Index>(i));
+    internal::parallel_sort(order.begin(), order.end(), [&candidates](Index a, Index b) {   // a total order
+      return candidates[a].cost < candidates[b].cost || (candidates[a].cost == candidates[b].cost && a < b);
+    });
     std::fill(locked.begin(), locked.end(), 0);
-    std::vector<Candidate> accepted;
+    std::vector<Collapse> accepted;
     const std::size_t budget = live - min_vertices;
-    for(const auto& entry : order)
+    for(const Index i : order)
     {
-      const Candidate& c = candidates[entry.second];
       if(accepted.size() >= budget)
         break;
+      const Collapse c{get(gid, source(candidates[i].h, work)), get(gid, target(candidates[i].h, work)), candidates[i].h};
       if(locked[c.o] || locked[c.e])
         continue;
       if(!CGAL::Euler::does_satisfy_link_condition(edge(c.h, work), work))
@@ -329,9 +333,9 @@ Pyramid<TriangleMesh> decompose(const TriangleMesh& tm, const NamedParameters& n
         row_of[g] = static_cast<Index>(level.vertices.size());
         level.vertices.push_back(g);
       }
-    std::sort(accepted.begin(), accepted.end(), [](const Candidate& a, const Candidate& b) { return a.o < b.o; });
+    std::sort(accepted.begin(), accepted.end(), [](const Collapse& a, const Collapse& b) { return a.o < b.o; });
     std::vector<Index> target_rows;
-    for(const Candidate& c : accepted)
+    for(const Collapse& c : accepted)
     {
       level.odd_rows.push_back(row_of[c.o]);
       level.collapse_targets.push_back(c.e);
@@ -369,7 +373,7 @@ Pyramid<TriangleMesh> decompose(const TriangleMesh& tm, const NamedParameters& n
 
     // ---- collapse, recording how to undo it on the face array
     std::vector<std::pair<Index, std::array<Index, 3> > > removed;
-    for(const Candidate& c : accepted)
+    for(const Collapse& c : accepted)
     {
       const halfedge_descriptor h = c.h;
       for(halfedge_descriptor hh : halfedges_around_target(source(h, work), work))
@@ -401,7 +405,7 @@ Pyramid<TriangleMesh> decompose(const TriangleMesh& tm, const NamedParameters& n
     {
       const Index idx = level.renamed_corners[q];
       const std::size_t odd = std::lower_bound(accepted.begin(), accepted.end(), level.renamed_vertices[q],
-                                               [](const Candidate& a, Index o) { return a.o < o; }) - accepted.begin();
+                                               [](const Collapse& a, Index o) { return a.o < o; }) - accepted.begin();
       F[idx] = accepted[odd].e;
     }
     std::sort(removed.begin(), removed.end(), [](const auto& a, const auto& b) { return a.first < b.first; });

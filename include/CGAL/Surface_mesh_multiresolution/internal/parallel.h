@@ -42,15 +42,15 @@ void parallel_for_blocks(std::size_t n, const F& f, std::size_t grain = 8192)
     f(std::size_t(0), n);
 }
 
-// Sorts [first, last) by operator<, in parallel with TBB when it is linked. Callers sort keys
-// that are all different (a total order), so the result does not depend on the threads.
-template <typename RandomIt>
-void parallel_sort(RandomIt first, RandomIt last)
+// Sorts [first, last) by `compare`, in parallel with TBB when it is linked. Callers sort by
+// a total order (keys all different), so the result does not depend on the threads.
+template <typename RandomIt, typename Compare>
+void parallel_sort(RandomIt first, RandomIt last, const Compare& compare)
 {
 #ifdef CGAL_LINKED_WITH_TBB
-  tbb::parallel_sort(first, last);
+  tbb::parallel_sort(first, last, compare);
 #else
-  std::sort(first, last);
+  std::sort(first, last, compare);
 #endif
 }
 
