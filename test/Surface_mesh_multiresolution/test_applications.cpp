@@ -129,6 +129,37 @@ TEST_CASE("filters on one channel leave the others alone", "[filter][channels]")
   CHECK(changed);
 }
 
+TEST_CASE("re-filtering into the same mesh (keep_connectivity) equals a full reconstruction", "[filter][refilter]")
+{
+  Mesh m = noisy_sphere(0.02);
+  auto t = m.add_property_map<Mesh::Vertex_index, double>("v:t").first;
+  for(auto v : vertices(m)) t[v] = m.point(v).x() * 10.;
+  const SMR::Pyramid<Mesh> pyr = SMR::decompose(m, SMR::parameters::vertex_attribute_maps(t));
+  for(std::size_t level : {std::size_t(0), std::size_t(2)})
+  {
+    Mesh out;
+    auto ot = out.add_property_map<Mesh::Vertex_index, double>("v:t").first;
+    SMR::reconstruct(pyr, out, SMR::parameters::level(level).vertex_attribute_maps(ot));
+    for(double gain : {0., 2.5})
+    {
+      SMR::Pyramid<Mesh> p = pyr;
+      SMR::scale_details(p, level + 1, gain);
+      Mesh full;
+      auto ft = full.add_property_map<Mesh::Vertex_index, double>("v:t").first;
+      SMR::reconstruct(p, full, SMR::parameters::level(level).vertex_attribute_maps(ft));
+      SMR::reconstruct(p, out, SMR::parameters::level(level).vertex_attribute_maps(ot).keep_connectivity(true));
+      CHECK(smr_test::positions_in_order(out) == smr_test::positions_in_order(full));
+      CHECK(num_faces(out) == num_faces(full));
+      bool same_values = true;
+      auto vf = vertices(full).begin();
+      for(auto v : vertices(out)) same_values = same_values && (ot[v] == ft[*vf++]);
+      CHECK(same_values);
+    }
+  }
+  Mesh wrong = smr_test::icosphere<Mesh>(2);
+  REQUIRE_THROWS_AS(SMR::reconstruct(pyr, wrong, SMR::parameters::keep_connectivity(true)), std::invalid_argument);
+}
+
 TEST_CASE("filters reject bad parameters", "[filter][input]")
 {
   SMR::Pyramid<Mesh> pyr = SMR::decompose(noisy_sphere(0.01));

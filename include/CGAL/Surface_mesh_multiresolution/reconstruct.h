@@ -109,9 +109,10 @@ inline void odd_row_flags(const Pyramid_level& lev, std::vector<unsigned char>& 
 
 // The values of every channel and the face array of level `level`, rebuilt from the
 // coarsest mesh: vertex splits on the face array, then Eq. 6 and 7 per level.
+// With `faces` false, F is left empty and the vertex splits are not replayed (values only).
 template <typename TriangleMesh>
 void reconstruct_arrays(const Pyramid<TriangleMesh>& pyr, std::size_t level,
-                        std::vector<std::vector<double> >& values, std::vector<Index>& F)
+                        std::vector<std::vector<double> >& values, std::vector<Index>& F, bool faces = true)
 {
   const std::size_t nc = pyr.number_of_channels();
   const std::size_t n0 = pyr.number_of_input_vertices();
@@ -125,27 +126,34 @@ void reconstruct_arrays(const Pyramid<TriangleMesh>& pyr, std::size_t level,
       std::copy(pyr.coarse_values()[c].begin() + r * dim, pyr.coarse_values()[c].begin() + (r + 1) * dim,
                 values[c].begin() + std::size_t(cv[r]) * dim);
   }
-  F = pyr.coarse_faces();
+  if(faces)
+    F = pyr.coarse_faces();
+  else
+    F.clear();
   std::vector<Index> G;
   std::vector<double> state, prediction;
   std::vector<unsigned char> is_odd;
   for(std::size_t k = pyr.number_of_levels(); k-- > level; )
   {
     const Pyramid_level& lev = pyr.levels()[k];
-    expand_faces(lev, F, G);
+    if(faces)
+      expand_faces(lev, F, G);
     odd_row_flags(lev, is_odd);
     for(std::size_t c = 0; c < nc; ++c)
       reconstruct_level_values(lev, pyr.dimensions()[c], lev.details[c], lev.corrections[c], is_odd, values[c], state, prediction);
   }
 }
 
-// Writes the vertices \`verts\` (global numbers, increasing) with their values and the faces
-// F (global numbers) into \`out\`, emptied first, with the channel maps of \`np\`.
-// \throws std::invalid_argument if the maps do not match the pyramid's channels
+// Writes the vertices `verts` (global numbers, increasing) with their values and the faces
+// F (global numbers) into `out`, emptied first, with the channel maps of `np`. With
+// `keep_connectivity`, `out` already has these vertices (in the order of vertices(out)) and
+// these faces: only the positions and channel values are written.
+// \throws std::invalid_argument if the maps do not match the pyramid's channels, or if
+// `keep_connectivity` is asked and `out` does not have the level's numbers of elements
 template <typename TriangleMesh, typename OutputMesh, typename NamedParameters>
 void write_output_mesh(const Pyramid<TriangleMesh>& pyr, const std::vector<Index>& verts,
                        const std::vector<std::vector<double> >& values, const std::vector<Index>& F,
-                       OutputMesh& out, const NamedParameters& np)
+                       OutputMesh& out, const NamedParameters& np, bool keep_connectivity = false, std::size_t number_of_faces = 0)
 {
   using parameters::choose_parameter;
   using parameters::get_parameter;
@@ -173,23 +181,40 @@ void write_output_mesh(const Pyramid<TriangleMesh>& pyr, const std::vector<Index
   Vertex_point_map vpm = choose_parameter(get_parameter(np, CGAL::internal_np::vertex_point),
                                           get_property_map(CGAL::vertex_point, out));
 
-  clear_keeping_properties(out, 0);
-  std::vector<vertex_descriptor> vd(pyr.number_of_input_vertices());
   std::vector<vertex_descriptor> ordered;
   ordered.reserve(verts.size());
   const auto point = gt.construct_point_3_object();
-  for(Index g : verts)
+  if(keep_connectivity)
   {
-    vd[g] = add_vertex(out);
-    put(vpm, vd[g], point(values[0][3 * g], values[0][3 * g + 1], values[0][3 * g + 2]));
-    ordered.push_back(vd[g]);
+    if(std::size_t(num_vertices(out)) != verts.size() || std::size_t(num_faces(out)) != number_of_faces)
+      throw std::invalid_argument("reconstruct: keep_connectivity asked, but the output mesh has " + std::to_string(num_vertices(out))
+                                  + " vertices and " + std::to_string(num_faces(out)) + " faces, the level has "
+                                  + std::to_string(verts.size()) + " and " + std::to_string(number_of_faces));
+    std::size_t r = 0;
+    for(vertex_descriptor v : vertices(out))
+    {
+      const Index g = verts[r++];
+      put(vpm, v, point(values[0][3 * g], values[0][3 * g + 1], values[0][3 * g + 2]));
+      ordered.push_back(v);
+    }
   }
-  std::vector<vertex_descriptor> tri(3);
-  for(std::size_t p = 0; p < F.size() / 3; ++p)
+  else
   {
-    for(int i = 0; i < 3; ++i)
-      tri[i] = vd[F[3 * p + i]];
-    CGAL::Euler::add_face(tri, out);
+    clear_keeping_properties(out, 0);
+    std::vector<vertex_descriptor> vd(pyr.number_of_input_vertices());
+    for(Index g : verts)
+    {
+      vd[g] = add_vertex(out);
+      put(vpm, vd[g], point(values[0][3 * g], values[0][3 * g + 1], values[0][3 * g + 2]));
+      ordered.push_back(vd[g]);
+    }
+    std::vector<vertex_descriptor> tri(3);
+    for(std::size_t p = 0; p < F.size() / 3; ++p)
+    {
+      for(int i = 0; i < 3; ++i)
+        tri[i] = vd[F[3 * p + i]];
+      CGAL::Euler::add_face(tri, out);
+    }
   }
   // channels, written through the same traits as they were read
   std::vector<double> buf;
@@ -240,9 +265,19 @@ void write_output_mesh(const Pyramid<TriangleMesh>& pyr, const std::vector<Index
  *     \cgalParamDescription{an instance of a geometric traits class}
  *     \cgalParamDefault{a `CGAL::Kernel_traits` compatible with the point type}
  *   \cgalParamNEnd
+ *   \cgalParamNBegin{keep_connectivity}
+ *     \cgalParamDescription{if `true`\, `out` already holds \f$ M_k \f$'s connectivity with its vertices in the
+ *                           order of `pyr.vertices(k)`: the result of an earlier `reconstruct()` of the same level of
+ *                           this pyramid or of a copy of it (filtered\, thresholded). Only the positions and the
+ *                           attribute values are written; no vertex split is replayed and no element is created,
+ *                           which makes re-filtering several times faster}
+ *     \cgalParamType{bool}
+ *     \cgalParamDefault{`false`}
+ *   \cgalParamNEnd
  * \cgalNamedParamsEnd
  *
- * \throws std::invalid_argument if `level` is above \f$ K \f$, or the attribute maps do not match the pyramid's channels
+ * \throws std::invalid_argument if `level` is above \f$ K \f$, or the attribute maps do not match the pyramid's
+ *         channels, or `keep_connectivity` is `true` and `out` does not have the level's numbers of vertices and faces
  */
 template <typename TriangleMesh, typename OutputMesh, typename NamedParameters = parameters::Default_named_parameters>
 void reconstruct(const Pyramid<TriangleMesh>& pyr, OutputMesh& out, const NamedParameters& np = parameters::default_values())
@@ -253,10 +288,12 @@ void reconstruct(const Pyramid<TriangleMesh>& pyr, OutputMesh& out, const NamedP
   if(level > pyr.number_of_levels())
     throw std::invalid_argument("reconstruct: level " + std::to_string(level) + " does not exist (the pyramid has levels 0 to "
                                 + std::to_string(pyr.number_of_levels()) + ")");
+  const bool keep_connectivity = choose_parameter(get_parameter(np, internal_np::keep_connectivity), false);
   std::vector<std::vector<double> > values;
   std::vector<internal::Index> F;
-  internal::reconstruct_arrays(pyr, level, values, F);
-  internal::write_output_mesh(pyr, pyr.vertices(level), values, F, out, np);
+  internal::reconstruct_arrays(pyr, level, values, F, !keep_connectivity);
+  internal::write_output_mesh(pyr, pyr.vertices(level), values, F, out, np, keep_connectivity,
+                              keep_connectivity ? pyr.number_of_faces(level) : 0);
 }
 
 } // namespace Surface_mesh_multiresolution

@@ -255,8 +255,8 @@ double reconstruct_adaptively(const Pyramid<TriangleMesh>& pyr, OutputMesh& out,
 
   // exact values of the kept vertices: those of the full reconstruction
   std::vector<std::vector<double> > values;
-  std::vector<Index> full_faces;
-  internal::reconstruct_arrays(pyr, 0, values, full_faces);
+  std::vector<Index> no_faces;
+  internal::reconstruct_arrays(pyr, 0, values, no_faces, false);   // values only: the faces are built above
   std::vector<Index> verts;
   for(Index g = 0; g < keep.size(); ++g)
     if(keep[g]) verts.push_back(g);
