@@ -18,6 +18,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <functional>
 #include <iostream>
 #include <string>
@@ -86,8 +87,9 @@ int main(int argc, char** argv)
   std::printf("Times are the best of repeated runs; rates in millions of vertices per second. Threads available: %d.\n\n", threads);
   std::printf("| mesh | vertices | baseline build+apply | curvature build | curvature apply (1 thread) | curvature apply (%d threads) "
               "| SOD build | SOD apply (1 thread) | uniform build | curvature build+apply / baseline | baseline / curvature apply (1 thread) "
-              "| SOD / curvature (build+apply) | 20 steps, fixed weights: baseline / curvature |\n", threads);
-  std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+              "| SOD / curvature (build+apply) | 20 steps, fixed weights: baseline / curvature "
+              "| curvature apply (1 thread) / copy of the bytes it reads |\n", threads);
+  std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
   for(const std::string& file : files)
   {
     Mesh m;
@@ -118,12 +120,22 @@ int main(int argc, char** argv)
       }
       t_apply_n[s] = best_time([&] { R.apply(xyz, out, 3); });
     }
+    // memory-bandwidth bound: a plain copy (one thread) of as many bytes as the curvature apply
+    // reads (weights 8 + columns 4 bytes per entry, row offsets, the input coordinates)
+    double t_copy = 0;
+    {
+      const SMR::Relaxation_operator<Mesh> R = SMR::relaxation_operator(m);
+      const std::size_t bytes = R.weights().size() * 12 + (std::size_t(n) + 1) * 4 + xyz.size() * sizeof(double);
+      std::vector<char> from(bytes, 1), to(bytes, 0);
+      t_copy = best_time([&] { std::memcpy(to.data(), from.data(), bytes); from[to[bytes / 2] % bytes] += 1; });
+    }
     auto rate = [n](double t) { return n / t / 1e6; };
     std::string name = file.substr(file.find_last_of('/') + 1);
-    std::printf("| %s | %.0f | %.2f | %.2f | %.1f | %.1f | %.2f | %.1f | %.2f | %.2fx | %.1fx | %.2f | %.1fx |\n", name.c_str(), n,
+    std::printf("| %s | %.0f | %.2f | %.2f | %.1f | %.1f | %.2f | %.1f | %.2f | %.2fx | %.1fx | %.2f | %.1fx | %.2f |\n", name.c_str(), n,
                 rate(t_base), rate(t_build[0]), rate(t_apply1[0]), rate(t_apply_n[0]), rate(t_build[1]), rate(t_apply1[1]),
                 rate(t_build[2]), t_base / (t_build[0] + t_apply1[0]), t_base / t_apply1[0],
-                (t_build[1] + t_apply1[1]) / (t_build[0] + t_apply1[0]), 20 * t_base / (t_build[0] + 20 * t_apply1[0]));
+                (t_build[1] + t_apply1[1]) / (t_build[0] + t_apply1[0]), 20 * t_base / (t_build[0] + 20 * t_apply1[0]),
+                t_apply1[0] / t_copy);
     std::fflush(stdout);
   }
   return 0;
