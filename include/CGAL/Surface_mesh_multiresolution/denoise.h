@@ -173,7 +173,8 @@ inline void smoothed_vertex_normals(const Sparse_weights& w, const std::vector<d
 // Geometry (normals given): the normal components of the residual d - R d (the smooth part
 // R d of the details, about the curvature times the squared edge length, is taken out; it is
 // signal, not noise). Other channels: all components of that residual.
-inline double noise_of_finest_details(const Sparse_weights& w, const std::vector<double>& d, std::size_t dim,
+// `factor` is residual_noise_factor(w), which depends on the weights only.
+inline double noise_of_finest_details(const Sparse_weights& w, double factor, const std::vector<double>& d, std::size_t dim,
                                       const std::vector<double>* normals)
 {
   std::vector<double> smooth(d.size());
@@ -196,7 +197,7 @@ inline double noise_of_finest_details(const Sparse_weights& w, const std::vector
     for(std::size_t i = 0; i < x.size(); ++i)
       x[i] = d[i] - smooth[i];
   }
-  return median_absolute_deviation(x) / residual_noise_factor(w);
+  return median_absolute_deviation(x) / factor;
 }
 
 // The finest level of the pyramid with uniform weights on its connectivity (rows of M_0 =
@@ -206,9 +207,12 @@ template <typename TriangleMesh>
 void uniform_finest_level(const Pyramid<TriangleMesh>& pyr, const std::vector<double>& positions, const std::vector<Index>& F,
                           Pyramid_level& finest)
 {
-  finest = pyr.levels()[0];
-  finest.details.clear();
-  finest.corrections.clear();
+  const Pyramid_level& level = pyr.levels()[0];   // what the analysis and synthesis of M_0 read
+  finest = Pyramid_level();
+  finest.vertices = level.vertices;
+  finest.odd_rows = level.odd_rows;
+  finest.even_rows = level.even_rows;
+  finest.collapse_targets = level.collapse_targets;
   Relaxation_weight_builder builder;
   std::vector<Relaxation_row_rule> rules;
   builder.set_connectivity(positions.size() / 3, F);
@@ -257,7 +261,8 @@ double estimate_noise(const Pyramid<TriangleMesh>& pyr, const NamedParameters& n
   internal::analyse_level_values(finest, dim, values[c], d, corrections);
   if(c == 0)
     internal::smoothed_vertex_normals(finest.weights, values[0], F, normals);
-  return internal::noise_of_finest_details(finest.weights, d, dim, c == 0 ? &normals : nullptr);
+  return internal::noise_of_finest_details(finest.weights, internal::residual_noise_factor(finest.weights), d, dim,
+                                          c == 0 ? &normals : nullptr);
 }
 
 /*!
@@ -313,13 +318,14 @@ double denoise(Pyramid<TriangleMesh>& pyr, const NamedParameters& np = parameter
   std::vector<std::pair<internal::Index, double> > corrections;
   std::vector<unsigned char> is_odd;
   internal::odd_row_flags(finest, is_odd);
+  const double factor = internal::residual_noise_factor(finest.weights);   // the weights do not change
   double first_threshold = -1.;
   for(unsigned int step = 0; step < 2 * passes; ++step)
   {
     internal::analyse_level_values(finest, dim, x, d, corrections);
     if(c == 0)
       internal::smoothed_vertex_normals(finest.weights, x, F, normals);
-    const double t = universal * internal::noise_of_finest_details(finest.weights, d, dim, c == 0 ? &normals : nullptr);
+    const double t = universal * internal::noise_of_finest_details(finest.weights, factor, d, dim, c == 0 ? &normals : nullptr);
     if(first_threshold < 0.)
       first_threshold = t;
     const double gain = step % 2 == 0 ? 0.5 : -0.53;
