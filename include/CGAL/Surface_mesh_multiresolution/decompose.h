@@ -13,22 +13,20 @@
 #include <CGAL/Surface_mesh_multiresolution/internal/Halfedge_collapse_cost_adapter.h>
 #include <CGAL/Surface_mesh_multiresolution/internal/indexed_mesh.h>
 #include <CGAL/Surface_mesh_multiresolution/internal/parallel.h>
+#include <CGAL/Surface_mesh_multiresolution/internal/Plane_quadrics.h>
 #include <CGAL/Surface_mesh_multiresolution/internal/relaxation_weights.h>
 #include <CGAL/Surface_mesh_multiresolution/Decomposition_visitor_base.h>
 #include <CGAL/Surface_mesh_multiresolution/parameters.h>
 #include <CGAL/Surface_mesh_multiresolution/Pyramid.h>
 
-#include <CGAL/boost/graph/copy_face_graph.h>
-#include <CGAL/boost/graph/Euler_operations.h>
-#include <CGAL/boost/graph/helpers.h>
-#include <CGAL/boost/graph/iterator.h>
 #include <CGAL/boost/graph/named_params_helper.h>
-#include <CGAL/Dynamic_property_map.h>
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <limits>
 #include <tuple>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -80,32 +78,142 @@ inline void analyse_level_values(const Pyramid_level& level, std::size_t dim, co
   compute_details(level.weights, level, target_rows, f, dim, details, corrections);
 }
 
-template <typename TriangleMesh, typename VertexPointMap, typename GeomTraits>
-bool does_collapse_flip_a_face(typename boost::graph_traits<TriangleMesh>::halfedge_descriptor h,
-                               const TriangleMesh& tm, VertexPointMap vpm, const GeomTraits& gt)
+// The link condition of CGAL::Euler::does_satisfy_link_condition() (CGAL 5.5) for the
+// collapse of the edge of halfedge h, on index arrays: every common neighbour of its ends is
+// the apex of a face on the edge; no face on the edge has its two other edges on the border
+// (isolated triangle); an interior edge joins no two border vertices, is not an edge of a
+// tetrahedron and does not close a two-face pillow.
+inline bool satisfies_link_condition(const Triangle_halfedges& th, Index h, const std::vector<unsigned char>& on_border)
 {
-  typedef typename boost::graph_traits<TriangleMesh>::vertex_descriptor   vertex_descriptor;
-  typedef typename boost::graph_traits<TriangleMesh>::halfedge_descriptor halfedge_descriptor;
-  const auto cross = gt.construct_cross_product_vector_3_object();
-  const auto dot = gt.compute_scalar_product_3_object();
-  const auto vector = gt.construct_vector_3_object();
-  const vertex_descriptor o = source(h, tm), e = target(h, tm);
-  const auto& po = get(vpm, o);
-  const auto& pe = get(vpm, e);
-  for(halfedge_descriptor hh : halfedges_around_target(o, tm))   // hh : b -> o
+  typedef Triangle_halfedges T;
+  const Index o = th.source[h], e = th.target[h], t = th.twin[h];
+  const bool top = th.has_face(h), bottom = th.has_face(t);
+  const Index apex_top = top ? th.opposite_vertex(h) : invalid_index;
+  const Index apex_bottom = bottom ? th.opposite_vertex(t) : invalid_index;
+  const Index* const o_first = th.out_target.data() + th.out_offsets[o];
+  const Index* const o_last = th.out_target.data() + th.out_offsets[o + 1];
+  const Index* const e_first = th.out_target.data() + th.out_offsets[e];
+  const Index* const e_last = th.out_target.data() + th.out_offsets[e + 1];
+  for(const Index* k = o_first; k != o_last; ++k)   // the 1-rings are short: a double loop beats any set
+    if(*k != e && *k != apex_top && *k != apex_bottom && std::find(e_first, e_last, *k) != e_last)
+      return false;
+  if(top && th.is_border_edge(T::next_in_face(h)) && th.is_border_edge(T::next_in_face(T::next_in_face(h))))
+    return false;
+  if(bottom && th.is_border_edge(T::next_in_face(t)) && th.is_border_edge(T::next_in_face(T::next_in_face(t))))
+    return false;
+  if(top && bottom)
   {
-    if(is_border(hh, tm))
+    if(on_border[o] && on_border[e])
+      return false;
+    if(o_last - o_first == 3 && e_last - e_first == 3)   // closed component of 4 vertices of valence 3
+      return false;
+    if(apex_top == apex_bottom)
+      return false;
+  }
+  return true;
+}
+
+// Whether moving source(h) onto target(h) turns a face around (or makes it degenerate):
+// the faces at source(h) that survive must keep the orientation of their normal.
+inline bool does_collapse_flip_a_face(const Triangle_halfedges& th, Index h, const double* xyz)
+{
+  const Index o = th.source[h], e = th.target[h];
+  const double* po = xyz + 3 * std::size_t(o);
+  const double* pe = xyz + 3 * std::size_t(e);
+  for(Index k = th.out_offsets[o]; k < th.out_offsets[o + 1]; ++k)
+  {
+    const Index g = th.out[k];                            // face (o, a, b)
+    if(!th.has_face(g))
       continue;
-    const vertex_descriptor a = target(next(hh, tm), tm), b = source(hh, tm);
+    const Index a = th.target[g], b = th.opposite_vertex(g);
     if(a == e || b == e)
-      continue;                                                  // this face disappears
-    const auto& pa = get(vpm, a);
-    const auto& pb = get(vpm, b);
-    if(!(dot(cross(vector(po, pa), vector(po, pb)), cross(vector(pe, pa), vector(pe, pb))) > 0))
+      continue;                                           // this face disappears
+    const double* pa = xyz + 3 * std::size_t(a);
+    const double* pb = xyz + 3 * std::size_t(b);
+    double before[3], after[3];
+    const double ua[3] = {pa[0] - po[0], pa[1] - po[1], pa[2] - po[2]}, ub[3] = {pb[0] - po[0], pb[1] - po[1], pb[2] - po[2]};
+    const double va[3] = {pa[0] - pe[0], pa[1] - pe[1], pa[2] - pe[2]}, vb[3] = {pb[0] - pe[0], pb[1] - pe[1], pb[2] - pe[2]};
+    before[0] = ua[1] * ub[2] - ua[2] * ub[1]; before[1] = ua[2] * ub[0] - ua[0] * ub[2]; before[2] = ua[0] * ub[1] - ua[1] * ub[0];
+    after[0] = va[1] * vb[2] - va[2] * vb[1]; after[1] = va[2] * vb[0] - va[0] * vb[2]; after[2] = va[0] * vb[1] - va[1] * vb[0];
+    if(!(before[0] * after[0] + before[1] * after[1] + before[2] * after[2] > 0))
       return true;
   }
   return false;
 }
+
+// An accepted half-edge collapse o -> e, in the rows of its level.
+struct Collapse { Index o, e, h; };
+
+// The greedy independent set of half-edge collapses of one level (Section 3.1): every
+// halfedge o -> e of M_k (connectivity th, rows) is a candidate, except those that would move
+// a border vertex off the border; candidates are taken in increasing cost (ties: halfedge
+// number, so the order is total and the result does not depend on threads); a candidate is
+// accepted when both ends are free, the link condition holds and no face flips, and then o
+// and its 1-ring are locked. Since accepted collapses have disjoint closed 1-rings around o
+// and lock e, all tests can be made on M_k: no collapse changes the 1-ring of another.
+// `cost(o, e)` takes rows; xyz: 3 doubles per row.
+template <typename CostOfRows, typename Candidate>
+void select_collapses(const Triangle_halfedges& th, const double* xyz, const CostOfRows& cost, std::size_t budget,
+                      std::vector<Candidate>& candidates, std::vector<unsigned char>& on_border,
+                      std::vector<unsigned char>& locked, std::vector<Collapse>& accepted)
+{
+  const Index nh = static_cast<Index>(th.source.size());
+  on_border.assign(th.n, 0);
+  for(Index h = static_cast<Index>(3 * th.nf); h < nh; ++h)   // the border halfedges come last
+    on_border[th.source[h]] = on_border[th.target[h]] = 1;
+  // costs in parallel (TBB), each into its own slot; refused collapses marked with NaN
+  candidates.resize(nh);
+  parallel_for_blocks(nh, [&](std::size_t first, std::size_t last) {
+    for(std::size_t i = first; i < last; ++i)
+    {
+      const Index h = static_cast<Index>(i);
+      double c = std::numeric_limits<double>::quiet_NaN();
+      if(!on_border[th.source[h]] || th.is_border_edge(h))     // border vertices move along the border only
+      {
+        const Optional<double> oc = cost(th.source[h], th.target[h]);
+        if(oc && !std::isnan(*oc))
+          c = *oc;
+      }
+      candidates[i] = Candidate{c, h};
+    }
+  }, 4096);
+  candidates.erase(std::remove_if(candidates.begin(), candidates.end(), [](const Candidate& c) { return std::isnan(c.cost); }),
+                   candidates.end());
+  parallel_sort(candidates.begin(), candidates.end(), [](const Candidate& a, const Candidate& b) {   // a total order
+    return a.cost < b.cost || (a.cost == b.cost && a.h < b.h);
+  });
+  locked.assign(th.n, 0);
+  accepted.clear();
+  for(const Candidate& candidate : candidates)
+  {
+    if(accepted.size() >= budget)
+      break;
+    const Index h = candidate.h, o = th.source[h], e = th.target[h];
+    if(locked[o] || locked[e])
+      continue;
+    if(!satisfies_link_condition(th, h, on_border) || does_collapse_flip_a_face(th, h, xyz))
+      continue;
+    locked[o] = 1;
+    for(Index k = th.out_offsets[o]; k < th.out_offsets[o + 1]; ++k)
+      locked[th.out_target[k]] = 1;
+    accepted.push_back(Collapse{o, e, h});
+  }
+}
+
+// The collapse model: the plane quadrics on index arrays for CGAL's Garland-Heckbert plane
+// policies (the default), any other SMS policy through a working halfedge mesh.
+template <typename GetCost>
+struct Is_plane_quadric_policy : std::false_type {};
+template <typename TriangleMesh, typename GeomTraits>
+struct Is_plane_quadric_policy<CGAL::Surface_mesh_simplification::GarlandHeckbert_plane_policies<TriangleMesh, GeomTraits> >
+  : std::true_type {};
+
+struct Plane_quadric_collapse_cost : Plane_quadrics
+{
+  template <typename TriangleMesh, typename VertexPointMap, typename VertexIndexMap, typename GeomTraits, typename UserCost>
+  Plane_quadric_collapse_cost(const TriangleMesh&, VertexPointMap, VertexIndexMap, const Indexed_mesh<TriangleMesh>&,
+                              const GeomTraits&, const UserCost&) {}
+};
 
 } // namespace internal
 
@@ -179,12 +287,8 @@ Pyramid<TriangleMesh> decompose(const TriangleMesh& tm, const NamedParameters& n
 {
   using parameters::choose_parameter;
   using parameters::get_parameter;
-  typedef typename boost::graph_traits<TriangleMesh>::vertex_descriptor   vertex_descriptor;
-  typedef typename boost::graph_traits<TriangleMesh>::halfedge_descriptor halfedge_descriptor;
-  typedef typename boost::graph_traits<TriangleMesh>::face_descriptor     face_descriptor;
   typedef typename GetGeomTraits<TriangleMesh, NamedParameters>::type     Geom_traits;
   typedef typename GetVertexPointMap<TriangleMesh, NamedParameters>::const_type Vertex_point_map;
-  typedef typename boost::property_map<TriangleMesh, CGAL::vertex_point_t>::type Work_point_map;
   typedef CGAL::Surface_mesh_simplification::GarlandHeckbert_plane_policies<TriangleMesh, Geom_traits> Default_cost;
   typedef typename CGAL::internal_np::Lookup_named_param_def<CGAL::internal_np::get_cost_policy_t, NamedParameters,
                                                              Default_cost>::type Get_cost_param;
@@ -223,204 +327,149 @@ Pyramid<TriangleMesh> decompose(const TriangleMesh& tm, const NamedParameters& n
   });
   const std::size_t nc = values.size();
 
-  // the working copy, whose vertices know their global number
-  TriangleMesh work;
-  std::vector<std::pair<vertex_descriptor, vertex_descriptor> > v2v;
-  CGAL::copy_face_graph(tm, work, CGAL::parameters::vertex_point_map(vpm).vertex_to_vertex_output_iterator(std::back_inserter(v2v)));
-  Work_point_map wpm = get(CGAL::vertex_point, work);
-  auto gid = get(CGAL::dynamic_vertex_property_t<Index>(), work);
-  {
-    const auto vim = CGAL::get_initialized_vertex_index_map(tm, np);
-    for(const auto& p : v2v)
-      put(gid, p.second, im.row(p.first, vim));
-  }
-  // the face array of the current level, in global numbers, and where each face sits in it
-  auto fpos = get(CGAL::dynamic_face_property_t<Index>(), work);
+  // the collapse costs: plane quadrics on index arrays for the default policy, a working
+  // halfedge mesh for any other SMS policy
+  typedef std::conditional_t<internal::Is_plane_quadric_policy<Get_cost_param>::value,
+                             internal::Plane_quadric_collapse_cost,
+                             internal::Sms_collapse_cost<TriangleMesh, Geom_traits, Get_cost_param> > Cost_model;
+  Cost_model cost_model(tm, vpm, CGAL::get_initialized_vertex_index_map(tm, np), im, gt,
+                        get_parameter(np, CGAL::internal_np::get_cost_policy));
+  // the face array of the current level, in input vertex numbers
   std::vector<Index> F;
-  std::vector<face_descriptor> face_at;
-  for(face_descriptor f : faces(work))
-  {
-    put(fpos, f, static_cast<Index>(face_at.size()));
-    face_at.push_back(f);
-    for(vertex_descriptor v : vertices_around_face(halfedge(f, work), work))
-      F.push_back(get(gid, v));
-  }
-
-  internal::Get_cost_holder<Get_cost_param, TriangleMesh> cost_holder(get_parameter(np, CGAL::internal_np::get_cost_policy), work);
-  internal::Halfedge_collapse_cost_adapter<TriangleMesh, Work_point_map, Geom_traits, Get_cost_param>
-      adapter(work, wpm, gt, cost_holder.policy);
+  F.swap(im.triangles);
 
   std::vector<unsigned char> alive(n0, 1);
   std::vector<Index> row_of(n0, internal::invalid_index);
-  std::vector<unsigned char> locked(n0, 0);
   std::size_t live = n0;
   internal::Relaxation_weight_builder builder;
-  std::vector<Index> tri_rows;
-  std::vector<double> f;
+  std::vector<Index> rows_to_vertices, tri_rows;
+  std::vector<double> xyz, f;
   // one candidate per halfedge (six per vertex), the largest temporary memory of a level:
-  // sorted in place (an index array sorted through the costs was 25 % slower on the dragon,
-  // (cost, index) pairs next to the candidates took 16 more bytes each)
-  struct Candidate { double cost; Index rank; halfedge_descriptor h; };   // rank: position before sorting
-  struct Collapse { Index o, e; halfedge_descriptor h; };   // an accepted collapse o -> e
+  // sorted in place (an index array sorted through the costs was 25 % slower on the dragon)
+  struct Candidate { double cost; Index h; };
   std::vector<Candidate> candidates;
-  std::vector<unsigned char> cost_ok;
-  std::vector<unsigned char> on_border(n0, 0);
+  std::vector<unsigned char> on_border, locked;
+  std::vector<internal::Collapse> accepted;
+  std::vector<std::pair<Index, std::array<Index, 3> > > removed;
 
   while(pyr.levels().size() < max_levels && live > min_vertices)
   {
     const std::size_t k = pyr.levels().size();
     visitor.on_level_started(k, live);
 
-    // ---- select the odd vertices (greedy independent set of half-edge collapses)
-    // border vertices, once per level (is_border(v) walks around v)
-    std::fill(on_border.begin(), on_border.end(), 0);
-    for(halfedge_descriptor h : halfedges(work))
-      if(is_border(h, work))
-        on_border[get(gid, source(h, work))] = on_border[get(gid, target(h, work))] = 1;
-    candidates.clear();
-    for(halfedge_descriptor h : halfedges(work))
-    {
-      const Index go = get(gid, source(h, work));
-      if(on_border[go] && !is_border_edge(h, work))
-        continue;                                     // border vertices move along the border only
-      candidates.push_back(Candidate{0., static_cast<Index>(candidates.size()), h});
-    }
-    // the costs only read the mesh and the quadrics: evaluated in parallel (TBB), each into its own slot
-    cost_ok.assign(candidates.size(), 0);
-    internal::parallel_for_blocks(candidates.size(), [&](std::size_t first, std::size_t last) {
-      for(std::size_t i = first; i < last; ++i)
+    // ---- M_k on index arrays: rows (its vertices in increasing input number), faces in rows, positions
+    rows_to_vertices.clear();
+    for(Index g = 0; g < n0; ++g)
+      if(alive[g])
       {
-        const internal::Optional<double> c = adapter.cost(candidates[i].h);
-        if(c) { candidates[i].cost = *c; cost_ok[i] = 1; }
+        row_of[g] = static_cast<Index>(rows_to_vertices.size());
+        rows_to_vertices.push_back(g);
       }
-    }, 2048);
-    // increasing cost; equal costs in the (deterministic) order of halfedges(work)
-    candidates.erase(std::remove_if(candidates.begin(), candidates.end(), [&cost_ok](const Candidate& c) { return !cost_ok[c.rank]; }),
-                     candidates.end());
-    internal::parallel_sort(candidates.begin(), candidates.end(), [](const Candidate& a, const Candidate& b) {   // a total order
-      return a.cost < b.cost || (a.cost == b.cost && a.rank < b.rank);
+    const std::size_t nk = rows_to_vertices.size();
+    tri_rows.resize(F.size());
+    internal::parallel_for_blocks(F.size(), [&](std::size_t first, std::size_t last) {
+      for(std::size_t i = first; i < last; ++i)
+        tri_rows[i] = row_of[F[i]];
     });
-    std::fill(locked.begin(), locked.end(), 0);
-    std::vector<Collapse> accepted;
-    const std::size_t budget = live - min_vertices;
-    for(const Candidate& candidate : candidates)
-    {
-      if(accepted.size() >= budget)
-        break;
-      const Collapse c{get(gid, source(candidate.h, work)), get(gid, target(candidate.h, work)), candidate.h};
-      if(locked[c.o] || locked[c.e])
-        continue;
-      if(!CGAL::Euler::does_satisfy_link_condition(edge(c.h, work), work))
-        continue;
-      if(internal::does_collapse_flip_a_face(c.h, work, wpm, gt))
-        continue;
-      locked[c.o] = 1;
-      for(vertex_descriptor w : vertices_around_target(source(c.h, work), work))
-        locked[get(gid, w)] = 1;
-      accepted.push_back(c);
-    }
+    xyz.resize(3 * nk);
+    for(std::size_t r = 0; r < nk; ++r)
+      std::copy(values[0].begin() + 3 * std::size_t(rows_to_vertices[r]), values[0].begin() + 3 * std::size_t(rows_to_vertices[r]) + 3,
+                xyz.begin() + 3 * r);
+    builder.set_connectivity(nk, tri_rows);
+    const internal::Triangle_halfedges& th = builder.connectivity();
+    if(k == 0)
+      cost_model.initialize(th, values[0]);   // on M_0, rows are the input's vertex numbers
+
+    // ---- select the odd vertices (greedy independent set of half-edge collapses)
+    internal::select_collapses(th, xyz.data(),
+                               [&](Index o, Index e) { return cost_model.cost(rows_to_vertices[o], rows_to_vertices[e]); },
+                               live - min_vertices, candidates, on_border, locked, accepted);
     if(accepted.empty())
       break;
 
     // ---- the level's vertices, weights and details, on M_k
     pyr.levels().emplace_back();
     internal::Pyramid_level& level = pyr.levels().back();
-    for(Index g = 0; g < n0; ++g)
-      if(alive[g])
-      {
-        row_of[g] = static_cast<Index>(level.vertices.size());
-        level.vertices.push_back(g);
-      }
-    std::sort(accepted.begin(), accepted.end(), [](const Collapse& a, const Collapse& b) { return a.o < b.o; });
+    level.vertices = rows_to_vertices;
+    std::sort(accepted.begin(), accepted.end(), [](const internal::Collapse& a, const internal::Collapse& b) { return a.o < b.o; });
     std::vector<Index> target_rows;
-    for(const Collapse& c : accepted)
+    target_rows.reserve(accepted.size());
+    level.odd_rows.reserve(accepted.size());
+    level.collapse_targets.reserve(accepted.size());
+    for(const internal::Collapse& c : accepted)
     {
-      level.odd_rows.push_back(row_of[c.o]);
-      level.collapse_targets.push_back(c.e);
-      target_rows.push_back(row_of[c.e]);
+      level.odd_rows.push_back(c.o);
+      level.collapse_targets.push_back(rows_to_vertices[c.e]);
+      target_rows.push_back(c.e);
     }
+    level.even_rows.reserve(nk - accepted.size());
     {
       std::size_t q = 0;
-      for(Index r = 0; r < level.vertices.size(); ++r)
+      for(Index r = 0; r < nk; ++r)
       {
         if(q < level.odd_rows.size() && level.odd_rows[q] == r) { ++q; continue; }
         level.even_rows.push_back(r);
       }
     }
-    const std::size_t nk = level.vertices.size();
-    tri_rows.resize(F.size());
-    for(std::size_t i = 0; i < F.size(); ++i)
-      tri_rows[i] = row_of[F[i]];
     level.details.resize(nc);
     level.corrections.resize(nc);
     for(std::size_t c = 0; c < nc; ++c)
     {
       const std::size_t dim = pyr.dimensions()[c];
-      f.resize(nk * dim);
-      for(std::size_t r = 0; r < nk; ++r)
-        std::copy(values[c].begin() + std::size_t(level.vertices[r]) * dim,
-                  values[c].begin() + (std::size_t(level.vertices[r]) + 1) * dim, f.begin() + r * dim);
       if(c == 0)
       {
         std::vector<Relaxation_row_rule> rules;
-        builder.set_connectivity(nk, tri_rows);
-        builder.build(scheme, f.data(), nullptr, level.weights, rules);
+        builder.build(scheme, xyz.data(), nullptr, level.weights, rules);
+        internal::compute_details(level.weights, level, target_rows, xyz, dim, level.details[c], level.corrections[c]);
+        continue;
       }
+      f.resize(nk * dim);
+      for(std::size_t r = 0; r < nk; ++r)
+        std::copy(values[c].begin() + std::size_t(rows_to_vertices[r]) * dim,
+                  values[c].begin() + (std::size_t(rows_to_vertices[r]) + 1) * dim, f.begin() + r * dim);
       internal::compute_details(level.weights, level, target_rows, f, dim, level.details[c], level.corrections[c]);
     }
 
-    // ---- collapse, recording how to undo it on the face array
-    std::vector<std::pair<Index, std::array<Index, 3> > > removed;
-    for(const Collapse& c : accepted)
+    // ---- collapse on the face array, recording how to undo it. The faces of two accepted
+    // collapses are disjoint (no face holds two odd vertices), so they are rewritten in place.
+    removed.clear();
+    for(const internal::Collapse& c : accepted)
     {
-      const halfedge_descriptor h = c.h;
-      for(halfedge_descriptor hh : halfedges_around_target(source(h, work), work))
+      const Index o = rows_to_vertices[c.o], e = rows_to_vertices[c.e];
+      for(Index q = th.out_offsets[c.o]; q < th.out_offsets[c.o + 1]; ++q)
       {
-        if(is_border(hh, work))
+        const Index g = th.out[q];                        // o -> a in face g / 3, o at corner g % 3
+        if(!th.has_face(g))
           continue;
-        const Index p = get(fpos, face(hh, work));
-        const Index* t = F.data() + 3 * std::size_t(p);
-        if(t[0] == c.e || t[1] == c.e || t[2] == c.e)
+        const Index p = g / 3;
+        Index* t = F.data() + 3 * std::size_t(p);
+        if(t[0] == e || t[1] == e || t[2] == e)
           removed.push_back(std::make_pair(p, std::array<Index, 3>{{t[0], t[1], t[2]}}));
         else
         {
-          const int corner = (t[0] == c.o) ? 0 : ((t[1] == c.o) ? 1 : 2);
-          level.renamed_corners.push_back(3 * p + corner);
-          level.renamed_vertices.push_back(c.o);
+          level.renamed_corners.push_back(g);
+          level.renamed_vertices.push_back(o);
+          t[g % 3] = e;
         }
       }
-      const auto pe = get(wpm, target(h, work));
-      adapter.before_collapse(h);
-      const vertex_descriptor kept = CGAL::Euler::collapse_edge(edge(h, work), work);
-      put(wpm, kept, pe);
-      put(gid, kept, c.e);
-      adapter.after_collapse(kept);
-      alive[c.o] = 0;
+      cost_model.collapse(o, e);
+      alive[o] = 0;
       --live;
     }
-    // the face array of M_{k+1}
-    for(std::size_t q = 0; q < level.renamed_corners.size(); ++q)
-    {
-      const Index idx = level.renamed_corners[q];
-      const std::size_t odd = std::lower_bound(accepted.begin(), accepted.end(), level.renamed_vertices[q],
-                                               [](const Collapse& a, Index o) { return a.o < o; }) - accepted.begin();
-      F[idx] = accepted[odd].e;
-    }
+    // the face array of M_{k+1}: the removed faces taken out
     std::sort(removed.begin(), removed.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
     std::size_t write = 0, next_removed = 0;
-    for(std::size_t p = 0; p < face_at.size(); ++p)
+    const std::size_t number_of_faces = F.size() / 3;
+    for(std::size_t p = 0; p < number_of_faces; ++p)
     {
       if(next_removed < removed.size() && removed[next_removed].first == p) { ++next_removed; continue; }
       if(write != p)
-      {
         std::copy(F.begin() + 3 * p, F.begin() + 3 * p + 3, F.begin() + 3 * write);
-        face_at[write] = face_at[p];
-      }
-      put(fpos, face_at[write], static_cast<Index>(write));
       ++write;
     }
     F.resize(3 * write);
-    face_at.resize(write);
+    level.removed_face_positions.reserve(removed.size());
+    level.removed_faces.reserve(3 * removed.size());
     for(const auto& r : removed)
     {
       level.removed_face_positions.push_back(r.first);

@@ -9,7 +9,11 @@
 #define CGAL_SURFACE_MESH_MULTIRESOLUTION_INTERNAL_HALFEDGE_COLLAPSE_COST_ADAPTER_H
 
 #include <CGAL/Surface_mesh_multiresolution/internal/config.h>
+#include <CGAL/Surface_mesh_multiresolution/internal/indexed_mesh.h>
+#include <CGAL/Surface_mesh_multiresolution/internal/relaxation_weights.h>
 
+#include <CGAL/boost/graph/copy_face_graph.h>
+#include <CGAL/boost/graph/Euler_operations.h>
 #include <CGAL/boost/graph/helpers.h>
 #include <CGAL/boost/graph/named_params_helper.h>
 #include <CGAL/Surface_mesh_simplification/Policies/Edge_collapse/Edge_profile.h>
@@ -17,8 +21,11 @@
 
 #include <boost/optional.hpp>
 
+#include <iterator>
+#include <memory>
 #include <type_traits>
 #include <utility>
+#include <vector>
 
 namespace CGAL {
 namespace Surface_mesh_multiresolution {
@@ -119,6 +126,65 @@ struct Get_cost_holder<GetCost, TriangleMesh, true>
   GetCost policy;   // stateful: a fresh object of the same type bound to the working copy
   template <typename UserCost>
   Get_cost_holder(const UserCost&, TriangleMesh& work) : policy(work) {}
+};
+
+// The cost model of the decomposition for any SMS `GetCost`: a working copy of the input
+// (a halfedge mesh of the input's type) on which the policy reads its `Edge_profile`s and
+// whose collapses follow the accepted ones, so that stateful policies see the quadrics they
+// expect. The selection itself runs on index arrays; this model only answers
+// cost(o, e) and applies collapse(o, e), with the input's vertex numbers.
+// (The default plane quadrics are evaluated without a working copy: Plane_quadrics.h.)
+template <typename TriangleMesh, typename GeomTraits, typename GetCost>
+class Sms_collapse_cost
+{
+  typedef typename boost::graph_traits<TriangleMesh>::vertex_descriptor   vertex_descriptor;
+  typedef typename boost::graph_traits<TriangleMesh>::halfedge_descriptor halfedge_descriptor;
+  typedef typename boost::property_map<TriangleMesh, CGAL::vertex_point_t>::type Work_point_map;
+  typedef Halfedge_collapse_cost_adapter<TriangleMesh, Work_point_map, GeomTraits, GetCost> Adapter;
+
+public:
+  template <typename VertexPointMap, typename VertexIndexMap, typename UserCost>
+  Sms_collapse_cost(const TriangleMesh& tm, VertexPointMap vpm, VertexIndexMap vim, const Indexed_mesh<TriangleMesh>& im,
+                    const GeomTraits& gt, const UserCost& user)
+  {
+    std::vector<std::pair<vertex_descriptor, vertex_descriptor> > v2v;
+    CGAL::copy_face_graph(tm, m_work, CGAL::parameters::vertex_point_map(vpm).vertex_to_vertex_output_iterator(std::back_inserter(v2v)));
+    m_wpm = get(CGAL::vertex_point, m_work);
+    m_wv.resize(im.number_of_vertices());
+    for(const auto& p : v2v)
+      m_wv[im.row(p.first, vim)] = p.second;
+    m_holder = std::make_unique<Get_cost_holder<GetCost, TriangleMesh> >(user, m_work);
+    m_adapter = std::make_unique<Adapter>(m_work, m_wpm, gt, m_holder->policy);
+  }
+
+  void initialize(const Triangle_halfedges&, const std::vector<double>&) {}
+
+  Optional<double> cost(Index o, Index e) const { return m_adapter->cost(work_halfedge(o, e)); }
+
+  void collapse(Index o, Index e)
+  {
+    const halfedge_descriptor h = work_halfedge(o, e);
+    const auto pe = get(m_wpm, m_wv[e]);
+    m_adapter->before_collapse(h);
+    const vertex_descriptor kept = CGAL::Euler::collapse_edge(edge(h, m_work), m_work);
+    put(m_wpm, kept, pe);
+    m_wv[e] = kept;
+    m_adapter->after_collapse(kept);
+  }
+
+private:
+  halfedge_descriptor work_halfedge(Index o, Index e) const
+  {
+    const auto he = halfedge(m_wv[o], m_wv[e], m_work);
+    CGAL_assertion(he.second);
+    return he.first;
+  }
+
+  TriangleMesh m_work;
+  Work_point_map m_wpm;
+  std::vector<vertex_descriptor> m_wv;   // input vertex number -> vertex of the working copy
+  std::unique_ptr<Get_cost_holder<GetCost, TriangleMesh> > m_holder;
+  std::unique_ptr<Adapter> m_adapter;
 };
 
 } // namespace internal

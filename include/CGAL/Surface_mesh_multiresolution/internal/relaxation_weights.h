@@ -231,6 +231,9 @@ public:
     m_mesh.build(n, triangles);
   }
 
+  // the halfedges of the last connectivity set
+  const Triangle_halfedges& connectivity() const { return m_mesh; }
+
   // xyz: 3 doubles per row; fixed: nullptr or one flag per row (constrained vertices)
   void build(Relaxation_scheme scheme, const double* xyz, const unsigned char* fixed,
              Sparse_weights& w, std::vector<Relaxation_row_rule>& rules)

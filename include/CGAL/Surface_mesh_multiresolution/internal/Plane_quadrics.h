@@ -1,0 +1,157 @@
+// Copyright (c) 2026  The Surface_mesh_multiresolution authors. All rights reserved.
+//
+// This file is part of Surface_mesh_multiresolution, an add-on package for CGAL.
+//
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s)     : The Surface_mesh_multiresolution authors
+#ifndef CGAL_SURFACE_MESH_MULTIRESOLUTION_INTERNAL_PLANE_QUADRICS_H
+#define CGAL_SURFACE_MESH_MULTIRESOLUTION_INTERNAL_PLANE_QUADRICS_H
+
+#include <CGAL/Surface_mesh_multiresolution/internal/config.h>
+#include <CGAL/Surface_mesh_multiresolution/internal/relaxation_weights.h>
+
+#include <cmath>
+#include <vector>
+
+namespace CGAL {
+namespace Surface_mesh_multiresolution {
+namespace internal {
+
+// The Garland-Heckbert plane quadrics of CGAL's `GarlandHeckbert_plane_policies` (CGAL 5.5,
+// GarlandHeckbert_policy_base.h and GarlandHeckbert_functions.h), on index arrays: per vertex
+// the sum of the plane quadrics of its faces (unit normal of the face, plane through it) and,
+// for every border edge at the vertex, 100 times the quadric of the plane through that edge
+// perpendicular to its face; after a collapse o -> e, Q_e becomes Q_o + Q_e. The cost of
+// moving o onto e is (Q_o + Q_e)(p_e).
+// Why by hand: SMS evaluates the same numbers through an `Edge_profile` built per candidate on
+// a halfedge mesh and stores 16 doubles per vertex; here a quadric is its 10 distinct
+// coefficients, read directly from contiguous arrays (the decomposition needs no working
+// halfedge mesh at all). Tested against SMS's cost on meshes with and without borders.
+class Plane_quadrics
+{
+public:
+  // coefficients of the symmetric 4x4 matrix, upper triangle row by row:
+  // a00 a01 a02 a03 a11 a12 a13 a22 a23 a33
+  static constexpr std::size_t size = 10;
+  static constexpr double discontinuity_multiplier = 100.;   // CGAL's default
+
+  // th: the connectivity of the input (rows = vertex numbers), xyz: 3 doubles per vertex
+  void initialize(const Triangle_halfedges& th, const std::vector<double>& xyz)
+  {
+    m_xyz = &xyz;
+    m_q.assign(size * th.n, 0.);
+    for(std::size_t f = 0; f < th.nf; ++f)
+    {
+      const Index h0 = static_cast<Index>(3 * f);
+      // CGAL takes p = target(h), q = target(next(h)), r = source(h) of the face's halfedge
+      const double* p = point(th.target[h0]);
+      const double* q = point(th.target[h0 + 1]);
+      const double* r = point(th.source[h0]);
+      double n[3];
+      cross_difference(q, r, p, n);
+      normalize(n);
+      double face_quadric[size];
+      outer(n, p, face_quadric);
+      for(Index h = h0; h < h0 + 3; ++h)
+      {
+        add(th.source[h], face_quadric, 1.);
+        if(th.has_face(th.twin[h]))
+          continue;
+        // border edge source(h) -> target(h): the plane through it, perpendicular to the face
+        const double* ep = point(th.target[h]);
+        const double* eq = point(th.target[Triangle_halfedges::next_in_face(h)]);
+        const double* er = point(th.source[h]);
+        double fn[3], edge[3], en[3];
+        cross_difference(eq, er, ep, fn);
+        for(int c = 0; c < 3; ++c) edge[c] = ep[c] - er[c];
+        en[0] = edge[1] * fn[2] - edge[2] * fn[1];
+        en[1] = edge[2] * fn[0] - edge[0] * fn[2];
+        en[2] = edge[0] * fn[1] - edge[1] * fn[0];
+        normalize(en);
+        double edge_quadric[size];
+        outer(en, ep, edge_quadric);
+        add(th.source[h], edge_quadric, discontinuity_multiplier);
+        add(th.target[h], edge_quadric, discontinuity_multiplier);
+      }
+    }
+  }
+
+  // cost of moving vertex o onto vertex e (input numbers)
+  Optional<double> cost(Index o, Index e) const
+  {
+    const double* a = m_q.data() + size * std::size_t(o);
+    const double* b = m_q.data() + size * std::size_t(e);
+    const double* x = point(e);
+    double s[size];
+    for(std::size_t i = 0; i < size; ++i)
+      s[i] = a[i] + b[i];
+    return Optional<double>(evaluate(s, x));
+  }
+
+  void collapse(Index o, Index e)
+  {
+    double* a = m_q.data() + size * std::size_t(o);
+    double* b = m_q.data() + size * std::size_t(e);
+    for(std::size_t i = 0; i < size; ++i)
+      b[i] = a[i] + b[i];
+  }
+
+  // x^T Q x for the homogeneous point (x, 1)
+  static double evaluate(const double* s, const double* x)
+  {
+    return x[0] * (s[0] * x[0] + 2. * (s[1] * x[1] + s[2] * x[2] + s[3]))
+         + x[1] * (s[4] * x[1] + 2. * (s[5] * x[2] + s[6]))
+         + x[2] * (s[7] * x[2] + 2. * s[8])
+         + s[9];
+  }
+
+  const double* quadric(Index v) const { return m_q.data() + size * std::size_t(v); }
+
+private:
+  const double* point(Index v) const { return m_xyz->data() + 3 * std::size_t(v); }
+
+  // n = (q - p) x (r - p)
+  static void cross_difference(const double* q, const double* r, const double* p, double* n)
+  {
+    const double u[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]};
+    const double v[3] = {r[0] - p[0], r[1] - p[1], r[2] - p[2]};
+    n[0] = u[1] * v[2] - u[2] * v[1];
+    n[1] = u[2] * v[0] - u[0] * v[2];
+    n[2] = u[0] * v[1] - u[1] * v[0];
+  }
+
+  // as CGAL: a zero vector stays zero (degenerate face: no plane, no quadric)
+  static void normalize(double* n)
+  {
+    const double l = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    if(l != 0.)
+      for(int c = 0; c < 3; ++c) n[c] /= l;
+  }
+
+  // the quadric of the plane with normal n through x: (n, -n.x)(n, -n.x)^T
+  static void outer(const double* n, const double* x, double* out)
+  {
+    const double r[4] = {n[0], n[1], n[2], -(n[0] * x[0] + n[1] * x[1] + n[2] * x[2])};
+    std::size_t k = 0;
+    for(int i = 0; i < 4; ++i)
+      for(int j = i; j < 4; ++j)
+        out[k++] = r[i] * r[j];
+  }
+
+  void add(Index v, const double* quadric, double factor)
+  {
+    double* q = m_q.data() + size * std::size_t(v);
+    for(std::size_t i = 0; i < size; ++i)
+      q[i] += factor * quadric[i];
+  }
+
+  const std::vector<double>* m_xyz = nullptr;
+  std::vector<double> m_q;
+};
+
+} // namespace internal
+} // namespace Surface_mesh_multiresolution
+} // namespace CGAL
+
+#endif // CGAL_SURFACE_MESH_MULTIRESOLUTION_INTERNAL_PLANE_QUADRICS_H
