@@ -488,3 +488,74 @@ TEST_CASE("the cost adapter gives the Garland-Heckbert cost of an independent qu
   }
   CHECK(checked == halfedges(m).size());
 }
+
+TEST_CASE("the index-based plane quadrics give SMS's Garland-Heckbert cost, borders included", "[pyramid][cost]")
+{
+  typedef boost::property_map<Mesh, CGAL::vertex_point_t>::type VPM;
+  typedef CGAL::Surface_mesh_simplification::GarlandHeckbert_plane_policies<Mesh, smr_test::Kernel> GH;
+  CGAL::Random rng(11);
+  for(int shape = 0; shape < 2; ++shape)
+  {
+    Mesh m = shape == 0 ? smr_test::planar_grid<Mesh>(9, 0.2) : smr_test::icosphere<Mesh>(2);
+    for(auto v : vertices(m))
+      m.point(v) = m.point(v) + Vector_3(rng.get_double(-.03, .03), rng.get_double(-.03, .03), rng.get_double(-.03, .03));
+    const smr_test::Kernel gt;
+    GH gh(m);
+    SMR::internal::Halfedge_collapse_cost_adapter<Mesh, VPM, smr_test::Kernel, GH> adapter(m, get(CGAL::vertex_point, m), gt, gh);
+    SMR::internal::Indexed_mesh<Mesh> im;
+    SMR::internal::build_indexed_mesh(m, get(CGAL::vertex_index, m), im);
+    std::vector<double> xyz;
+    SMR::internal::read_coordinates(im.vertices, get(CGAL::vertex_point, m), gt, xyz);
+    SMR::internal::Triangle_halfedges th;
+    th.build(im.number_of_vertices(), im.triangles);
+    SMR::internal::Plane_quadrics quadrics;
+    quadrics.initialize(th, xyz);
+    std::size_t checked = 0, border = 0;
+    double largest = 0.;
+    for(auto h : halfedges(m))
+    {
+      const auto expected = adapter.cost(h);
+      const auto c = quadrics.cost(im.row(source(h, m), get(CGAL::vertex_index, m)), im.row(target(h, m), get(CGAL::vertex_index, m)));
+      REQUIRE(bool(expected));
+      REQUIRE(bool(c));
+      CHECK(*c == Approx(*expected).epsilon(1e-9).margin(1e-12));
+      largest = (std::max)(largest, *expected);
+      border += is_border_edge(h, m) ? 1 : 0;
+      ++checked;
+    }
+    CHECK(checked == halfedges(m).size());
+    CHECK(largest > 1e-4);                      // the noise makes the costs non-trivial
+    CHECK((shape == 0) == (border > 0));        // the grid's border quadrics were compared too
+  }
+}
+
+namespace {
+// the Garland-Heckbert plane policies under another type: decompose() then drives them
+// through SMS edge profiles on a working halfedge mesh instead of its index-based quadrics
+struct Wrapped_plane_policies : CGAL::Surface_mesh_simplification::GarlandHeckbert_plane_policies<Mesh, smr_test::Kernel>
+{
+  explicit Wrapped_plane_policies(Mesh& m) : CGAL::Surface_mesh_simplification::GarlandHeckbert_plane_policies<Mesh, smr_test::Kernel>(m) {}
+};
+} // namespace
+
+TEST_CASE("the default quadrics on index arrays and SMS's policies on a working mesh build the same pyramid", "[pyramid][cost]")
+{
+  Mesh m = smr_test::planar_grid<Mesh>(14, 0.2);
+  CGAL::Random rng(4);
+  for(auto v : vertices(m))
+    m.point(v) = m.point(v) + Vector_3(rng.get_double(-.02, .02), rng.get_double(-.02, .02), rng.get_double(-.05, .05));
+  const auto a = SMR::decompose(m);
+  Mesh dummy;
+  const auto b = SMR::decompose(m, CGAL::parameters::get_cost(Wrapped_plane_policies(dummy)));
+  REQUIRE(a.number_of_levels() > 3);
+  REQUIRE(a.number_of_levels() == b.number_of_levels());
+  for(std::size_t k = 0; k < a.number_of_levels(); ++k)
+  {
+    CHECK(a.levels()[k].vertices == b.levels()[k].vertices);
+    CHECK(a.levels()[k].odd_rows == b.levels()[k].odd_rows);
+    CHECK(a.levels()[k].collapse_targets == b.levels()[k].collapse_targets);
+    CHECK(a.levels()[k].removed_faces == b.levels()[k].removed_faces);
+  }
+  CHECK(a.coarse_faces() == b.coarse_faces());
+  check_exact_round_trip(m, b);
+}
