@@ -559,3 +559,40 @@ TEST_CASE("the default quadrics on index arrays and SMS's policies on a working 
   CHECK(a.coarse_faces() == b.coarse_faces());
   check_exact_round_trip(m, b);
 }
+
+TEST_CASE("a vertex pinched between two fans survives decomposition and reconstruction", "[pyramid][input]")
+{
+  // two planar grids that touch at one corner: the halfedge mesh is valid, the corner has two border gaps
+  Mesh m;
+  const int n = 6;
+  std::vector<Mesh::Vertex_index> a(n * n), b(n * n);
+  for(int i = 0; i < n; ++i)
+    for(int j = 0; j < n; ++j)
+    {
+      a[i * n + j] = m.add_vertex(Point_3(i, j, 0.1 * std::sin(i + 2. * j)));
+      b[i * n + j] = (i == 0 && j == 0) ? a[0] : m.add_vertex(Point_3(-i, -j, 0.1 * std::cos(2. * i + j)));
+    }
+  for(const auto* grid : {&a, &b})
+    for(int i = 0; i + 1 < n; ++i)
+      for(int j = 0; j + 1 < n; ++j)
+      {
+        const auto& g = *grid;
+        const bool flip = (grid == &b);   // the mirrored grid keeps a consistent orientation
+        std::vector<Mesh::Vertex_index> t1{g[i * n + j], g[(i + 1) * n + j], g[(i + 1) * n + j + 1]};
+        std::vector<Mesh::Vertex_index> t2{g[i * n + j], g[(i + 1) * n + j + 1], g[i * n + j + 1]};
+        if(flip) { std::swap(t1[1], t1[2]); std::swap(t2[1], t2[2]); }
+        REQUIRE(CGAL::Euler::add_face(t1, m) != Mesh::null_face());
+        REQUIRE(CGAL::Euler::add_face(t2, m) != Mesh::null_face());
+      }
+  REQUIRE(CGAL::is_valid_polygon_mesh(m));
+  const auto pyr = SMR::decompose(m);
+  REQUIRE(pyr.number_of_levels() > 0);
+  check_exact_round_trip(m, pyr);
+  for(std::size_t k = 0; k <= pyr.number_of_levels(); ++k)
+  {
+    Mesh level;
+    SMR::reconstruct(pyr, level, SMR::parameters::level(k));
+    CHECK(CGAL::is_valid_polygon_mesh(level));
+    CHECK(faces(level).size() == pyr.number_of_faces(k));
+  }
+}

@@ -10,6 +10,7 @@
 
 #include <CGAL/Surface_mesh_multiresolution/internal/config.h>
 #include <CGAL/Surface_mesh_multiresolution/internal/channels.h>
+#include <CGAL/Surface_mesh_multiresolution/internal/relaxation_weights.h>
 #include <CGAL/Surface_mesh_multiresolution/parameters.h>
 #include <CGAL/Surface_mesh_multiresolution/Pyramid.h>
 
@@ -37,6 +38,75 @@ auto clear_keeping_properties(Mesh& m, int) -> decltype(m.clear_without_removing
 }
 template <typename Mesh>
 void clear_keeping_properties(Mesh& m, long) { CGAL::clear(m); }
+
+// Adds the triangles `tri` (rows) to `out`, whose vertex of row r is vd[r] (already added, no
+// element else), linking the halfedges directly (set_next, set_target, set_face...) from the
+// index halfedges of Triangle_halfedges. Why by hand: Euler::add_face() searches the
+// halfedges around each corner for every face, which was 40 % of a reconstruction of the
+// dragon; here every edge is known with its twin. Falls back to add_face() where a vertex has
+// more than one border gap (a pinched vertex, whose border cycles need add_face's search).
+template <typename FaceGraph>
+void add_triangles(FaceGraph& out, const std::vector<typename boost::graph_traits<FaceGraph>::vertex_descriptor>& vd,
+                   const std::vector<Index>& tri)
+{
+  typedef boost::graph_traits<FaceGraph> GT;
+  typedef typename GT::halfedge_descriptor halfedge_descriptor;
+  typedef typename GT::face_descriptor     face_descriptor;
+  Triangle_halfedges th;
+  th.build(vd.size(), tri);
+  const std::size_t nh = th.source.size(), h0 = 3 * th.nf;
+  std::vector<Index> border_out(vd.size(), invalid_index);
+  bool pinched = false;
+  for(std::size_t g = h0; g < nh && !pinched; ++g)
+  {
+    Index& b = border_out[th.source[g]];
+    pinched = (b != invalid_index);
+    b = static_cast<Index>(g);
+  }
+  for(std::size_t h = 0; h < nh && !pinched; ++h)
+    pinched = (th.twin[h] == invalid_index || th.twin[th.twin[h]] != h);
+  if(pinched)
+  {
+    std::vector<typename GT::vertex_descriptor> corners(3);
+    for(std::size_t p = 0; p < th.nf; ++p)
+    {
+      for(int i = 0; i < 3; ++i)
+        corners[i] = vd[tri[3 * p + i]];
+      CGAL::Euler::add_face(corners, out);
+    }
+    return;
+  }
+  reserve(out, static_cast<typename GT::vertices_size_type>(num_vertices(out)),
+          static_cast<typename GT::edges_size_type>(nh / 2), static_cast<typename GT::faces_size_type>(th.nf));
+  std::vector<halfedge_descriptor> hd(nh);
+  for(std::size_t h = 0; h < nh; ++h)
+    if(h < th.twin[h])
+    {
+      const halfedge_descriptor a = halfedge(add_edge(out), out);
+      hd[h] = a;
+      hd[th.twin[h]] = opposite(a, out);
+    }
+  for(std::size_t p = 0; p < th.nf; ++p)
+  {
+    const face_descriptor f = add_face(out);
+    set_halfedge(f, hd[3 * p], out);
+    for(std::size_t k = 3 * p; k < 3 * p + 3; ++k)
+    {
+      set_face(hd[k], f, out);
+      set_target(hd[k], vd[th.target[k]], out);
+      set_next(hd[k], hd[Triangle_halfedges::next_in_face(static_cast<Index>(k))], out);
+      set_halfedge(vd[th.target[k]], hd[k], out);
+    }
+  }
+  // border halfedges last, so that a border vertex's halfedge is its incoming border halfedge
+  for(std::size_t g = h0; g < nh; ++g)
+  {
+    set_face(hd[g], GT::null_face(), out);
+    set_target(hd[g], vd[th.target[g]], out);
+    set_next(hd[g], hd[border_out[th.target[g]]], out);
+    set_halfedge(vd[th.target[g]], hd[g], out);
+  }
+}
 
 // The face array of M_k from the one of M_{k+1}: removed faces back at their places, odd
 // vertices back at their corners (vertex splits on arrays). G is scratch.
@@ -201,20 +271,20 @@ void write_output_mesh(const Pyramid<TriangleMesh>& pyr, const std::vector<Index
   else
   {
     clear_keeping_properties(out, 0);
-    std::vector<vertex_descriptor> vd(pyr.number_of_input_vertices());
+    reserve(out, static_cast<typename boost::graph_traits<OutputMesh>::vertices_size_type>(verts.size()),
+            static_cast<typename boost::graph_traits<OutputMesh>::edges_size_type>(0),
+            static_cast<typename boost::graph_traits<OutputMesh>::faces_size_type>(0));
+    std::vector<Index> row_of(pyr.number_of_input_vertices(), invalid_index);
     for(Index g : verts)
     {
-      vd[g] = add_vertex(out);
-      put(vpm, vd[g], point(values[0][3 * g], values[0][3 * g + 1], values[0][3 * g + 2]));
-      ordered.push_back(vd[g]);
+      row_of[g] = static_cast<Index>(ordered.size());
+      ordered.push_back(add_vertex(out));
+      put(vpm, ordered.back(), point(values[0][3 * g], values[0][3 * g + 1], values[0][3 * g + 2]));
     }
-    std::vector<vertex_descriptor> tri(3);
-    for(std::size_t p = 0; p < F.size() / 3; ++p)
-    {
-      for(int i = 0; i < 3; ++i)
-        tri[i] = vd[F[3 * p + i]];
-      CGAL::Euler::add_face(tri, out);
-    }
+    std::vector<Index> tri(F.size());
+    for(std::size_t i = 0; i < F.size(); ++i)
+      tri[i] = row_of[F[i]];
+    add_triangles(out, ordered, tri);
   }
   // channels, written through the same traits as they were read
   std::vector<double> buf;
