@@ -596,3 +596,33 @@ TEST_CASE("a vertex pinched between two fans survives decomposition and reconstr
     CHECK(faces(level).size() == pyr.number_of_faces(k));
   }
 }
+
+TEST_CASE("the candidates' radix sort orders by (cost, halfedge) like a comparison sort", "[pyramid][cost]")
+{
+  CGAL::Random rng(8);
+  for(int trial = 0; trial < 4; ++trial)
+  {
+    std::vector<SMR::internal::Collapse_candidate> c;
+    const std::size_t n = trial == 0 ? 1 : 20000;
+    for(std::size_t i = 0; i < n; ++i)
+    {
+      double cost;
+      switch(rng.get_int(0, 6))
+      {
+        case 0: cost = 0.; break;
+        case 1: cost = -0.; break;
+        case 2: cost = 1e-3 * rng.get_int(0, 5); break;                      // exact ties
+        case 3: cost = -std::ldexp(rng.get_double(), rng.get_int(-60, 3)); break;
+        case 4: cost = trial == 3 ? std::numeric_limits<double>::infinity() : 1.; break;
+        default: cost = std::ldexp(1. + 1e-9 * rng.get_int(0, 3), rng.get_int(-40, 10)); break;   // equal high bits
+      }
+      c.push_back(SMR::internal::Collapse_candidate{cost, static_cast<SMR::internal::Index>(i)});
+    }
+    auto expected = c;
+    std::sort(expected.begin(), expected.end(), [](const auto& a, const auto& b) { return a.cost < b.cost || (a.cost == b.cost && a.h < b.h); });
+    SMR::internal::sort_candidates(c);
+    REQUIRE(c.size() == expected.size());
+    for(std::size_t i = 0; i < c.size(); ++i)
+      REQUIRE(c[i].h == expected[i].h);
+  }
+}
