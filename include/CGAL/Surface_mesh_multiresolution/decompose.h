@@ -48,7 +48,7 @@ inline void compute_details(const Sparse_weights& w, const Pyramid_level& level,
   const std::size_t n = level.vertices.size();
   std::vector<double> state(f), prediction(n * dim);
   for(std::size_t q = 0; q < level.odd_rows.size(); ++q)
-    std::copy(f.begin() + target_rows[q] * dim, f.begin() + (target_rows[q] + 1) * dim, state.begin() + level.odd_rows[q] * dim);
+    copy_values(f.data() + target_rows[q] * dim, dim, state.data() + level.odd_rows[q] * dim);
   w.apply_row_list(state.data(), prediction.data(), dim, level.odd_rows.data(), level.odd_rows.size());
   w.apply_row_list(f.data(), prediction.data(), dim, level.even_rows.data(), level.even_rows.size());
   details.resize(n * dim);
@@ -71,8 +71,7 @@ inline void analyse_level_values(const Pyramid_level& level, std::size_t dim, co
   const std::size_t n = level.vertices.size();
   std::vector<double> f(n * dim);
   for(std::size_t r = 0; r < n; ++r)
-    std::copy(v.begin() + std::size_t(level.vertices[r]) * dim, v.begin() + (std::size_t(level.vertices[r]) + 1) * dim,
-              f.begin() + r * dim);
+    copy_values(v.data() + std::size_t(level.vertices[r]) * dim, dim, f.data() + r * dim);
   std::vector<Index> target_rows(level.collapse_targets.size());
   for(std::size_t q = 0; q < target_rows.size(); ++q)
     target_rows[q] = static_cast<Index>(std::lower_bound(level.vertices.begin(), level.vertices.end(), level.collapse_targets[q])
@@ -426,8 +425,7 @@ Pyramid<TriangleMesh> decompose(const TriangleMesh& tm, const NamedParameters& n
     });
     xyz.resize(3 * nk);
     for(std::size_t r = 0; r < nk; ++r)
-      std::copy(values[0].begin() + 3 * std::size_t(rows_to_vertices[r]), values[0].begin() + 3 * std::size_t(rows_to_vertices[r]) + 3,
-                xyz.begin() + 3 * r);
+      internal::copy_values(values[0].data() + 3 * std::size_t(rows_to_vertices[r]), 3, xyz.data() + 3 * r);
     builder.set_connectivity(nk, tri_rows);
     const internal::Triangle_halfedges& th = builder.connectivity();
     if(k == 0)
@@ -478,8 +476,7 @@ Pyramid<TriangleMesh> decompose(const TriangleMesh& tm, const NamedParameters& n
       }
       f.resize(nk * dim);
       for(std::size_t r = 0; r < nk; ++r)
-        std::copy(values[c].begin() + std::size_t(rows_to_vertices[r]) * dim,
-                  values[c].begin() + (std::size_t(rows_to_vertices[r]) + 1) * dim, f.begin() + r * dim);
+        internal::copy_values(values[c].data() + std::size_t(rows_to_vertices[r]) * dim, dim, f.data() + r * dim);
       internal::compute_details(level.weights, level, target_rows, f, dim, level.details[c], level.corrections[c]);
     }
 
@@ -517,7 +514,7 @@ Pyramid<TriangleMesh> decompose(const TriangleMesh& tm, const NamedParameters& n
     {
       if(next_removed < removed.size() && removed[next_removed].first == p) { ++next_removed; continue; }
       if(write != p)
-        std::copy(F.begin() + 3 * p, F.begin() + 3 * p + 3, F.begin() + 3 * write);
+        internal::copy_values(F.data() + 3 * p, 3, F.data() + 3 * write);
       ++write;
     }
     F.resize(3 * write);

@@ -119,12 +119,12 @@ inline void expand_faces(const Pyramid_level& lev, std::vector<Index>& F, std::v
   {
     if(next_removed < lev.removed_face_positions.size() && lev.removed_face_positions[next_removed] == p)
     {
-      std::copy(lev.removed_faces.begin() + 3 * next_removed, lev.removed_faces.begin() + 3 * next_removed + 3, G.begin() + 3 * p);
+      copy_values(lev.removed_faces.data() + 3 * next_removed, 3, G.data() + 3 * p);
       ++next_removed;
     }
     else
     {
-      std::copy(F.begin() + 3 * from, F.begin() + 3 * from + 3, G.begin() + 3 * p);
+      copy_values(F.data() + 3 * from, 3, G.data() + 3 * p);
       ++from;
     }
   }
@@ -145,11 +145,9 @@ inline void reconstruct_level_values(const Pyramid_level& lev, std::size_t dim, 
   state.resize(nk * dim);
   prediction.resize(nk * dim);
   for(std::size_t r = 0; r < nk; ++r)
-    std::copy(v.begin() + std::size_t(lev.vertices[r]) * dim, v.begin() + (std::size_t(lev.vertices[r]) + 1) * dim,
-              state.begin() + r * dim);
+    copy_values(v.data() + std::size_t(lev.vertices[r]) * dim, dim, state.data() + r * dim);
   for(std::size_t q = 0; q < lev.odd_rows.size(); ++q)   // an odd vertex starts from the value of its target
-    std::copy(v.begin() + std::size_t(lev.collapse_targets[q]) * dim, v.begin() + (std::size_t(lev.collapse_targets[q]) + 1) * dim,
-              state.begin() + std::size_t(lev.odd_rows[q]) * dim);
+    copy_values(v.data() + std::size_t(lev.collapse_targets[q]) * dim, dim, state.data() + std::size_t(lev.odd_rows[q]) * dim);
   // Eq. 6: odd vertices (corrected before the even vertices read them)
   lev.weights.apply_row_list(state.data(), prediction.data(), dim, lev.odd_rows.data(), lev.odd_rows.size());
   for(Index r : lev.odd_rows)
@@ -167,7 +165,7 @@ inline void reconstruct_level_values(const Pyramid_level& lev, std::size_t dim, 
     if(!is_odd[cr.first / dim])
       state[cr.first] = state[cr.first] + cr.second;
   for(std::size_t r = 0; r < nk; ++r)
-    std::copy(state.begin() + r * dim, state.begin() + (r + 1) * dim, v.begin() + std::size_t(lev.vertices[r]) * dim);
+    copy_values(state.data() + r * dim, dim, v.data() + std::size_t(lev.vertices[r]) * dim);
 }
 
 inline void odd_row_flags(const Pyramid_level& lev, std::vector<unsigned char>& is_odd)
@@ -193,8 +191,7 @@ void reconstruct_arrays(const Pyramid<TriangleMesh>& pyr, std::size_t level,
     values[c].assign(n0 * dim, 0.);
     const std::vector<Index>& cv = pyr.coarse_vertices();
     for(std::size_t r = 0; r < cv.size(); ++r)
-      std::copy(pyr.coarse_values()[c].begin() + r * dim, pyr.coarse_values()[c].begin() + (r + 1) * dim,
-                values[c].begin() + std::size_t(cv[r]) * dim);
+      copy_values(pyr.coarse_values()[c].data() + r * dim, dim, values[c].data() + std::size_t(cv[r]) * dim);
   }
   if(faces)
     F = pyr.coarse_faces();
