@@ -17,6 +17,7 @@
 #include <CGAL/boost/graph/Euler_operations.h>
 #include <CGAL/boost/graph/helpers.h>
 #include <CGAL/boost/graph/named_params_helper.h>
+#include <CGAL/Surface_mesh/Surface_mesh_fwd.h>
 
 #include <stdexcept>
 #include <string>
@@ -39,23 +40,63 @@ auto clear_keeping_properties(Mesh& m, int) -> decltype(m.clear_without_removing
 template <typename Mesh>
 void clear_keeping_properties(Mesh& m, long) { CGAL::clear(m); }
 
-// Adds the triangles `tri` (rows) to `out`, whose vertex of row r is vd[r] (already added, no
-// element else), linking the halfedges directly (set_next, set_target, set_face...) from the
-// index halfedges of Triangle_halfedges. Why by hand: Euler::add_face() searches the
-// halfedges around each corner for every face, which was 40 % of a reconstruction of the
-// dragon; here every edge is known with its twin. Falls back to add_face() where a vertex has
-// more than one border gap (a pinched vertex, whose border cycles need add_face's search).
+// Adds nv vertices, ne edges and nf faces to an empty mesh, their descriptors in vd, hd (one
+// halfedge per edge) and fd: add_vertex(), add_edge(), add_face() for any mutable face graph;
+// for a Surface_mesh one resize() of its property arrays (one push_back per element and
+// property array was a third of building the dragon's mesh).
 template <typename FaceGraph>
-void add_triangles(FaceGraph& out, const std::vector<typename boost::graph_traits<FaceGraph>::vertex_descriptor>& vd,
-                   const std::vector<Index>& tri)
+void create_elements(FaceGraph& out, std::size_t nv, std::size_t ne, std::size_t nf,
+                     std::vector<typename boost::graph_traits<FaceGraph>::vertex_descriptor>& vd,
+                     std::vector<typename boost::graph_traits<FaceGraph>::halfedge_descriptor>& hd,
+                     std::vector<typename boost::graph_traits<FaceGraph>::face_descriptor>& fd)
+{
+  typedef boost::graph_traits<FaceGraph> GT;
+  reserve(out, static_cast<typename GT::vertices_size_type>(nv), static_cast<typename GT::edges_size_type>(ne),
+          static_cast<typename GT::faces_size_type>(nf));
+  vd.resize(nv);
+  hd.resize(ne);
+  fd.resize(nf);
+  for(auto& v : vd) v = add_vertex(out);
+  for(auto& h : hd) h = halfedge(add_edge(out), out);
+  for(auto& f : fd) f = add_face(out);
+}
+
+template <typename Point>
+void create_elements(CGAL::Surface_mesh<Point>& out, std::size_t nv, std::size_t ne, std::size_t nf,
+                     std::vector<typename CGAL::Surface_mesh<Point>::Vertex_index>& vd,
+                     std::vector<typename CGAL::Surface_mesh<Point>::Halfedge_index>& hd,
+                     std::vector<typename CGAL::Surface_mesh<Point>::Face_index>& fd)
+{
+  typedef CGAL::Surface_mesh<Point> SM;
+  typedef typename SM::size_type size_type;
+  CGAL_precondition(out.number_of_vertices() == 0 && out.number_of_removed_vertices() == 0);
+  out.resize(static_cast<size_type>(nv), static_cast<size_type>(ne), static_cast<size_type>(nf));
+  vd.resize(nv);
+  hd.resize(ne);
+  fd.resize(nf);
+  for(std::size_t i = 0; i < nv; ++i) vd[i] = typename SM::Vertex_index(static_cast<size_type>(i));
+  for(std::size_t i = 0; i < ne; ++i) hd[i] = out.halfedge(typename SM::Edge_index(static_cast<size_type>(i)));
+  for(std::size_t i = 0; i < nf; ++i) fd[i] = typename SM::Face_index(static_cast<size_type>(i));
+}
+
+// Makes the empty mesh `out` the triangle mesh of `tri` (nv vertices, 3 rows per face, faces
+// in this order); vd receives the vertex of each row. The halfedges are linked directly
+// (set_next, set_target, set_face...) from the index halfedges of Triangle_halfedges. Why by
+// hand: Euler::add_face() searches the halfedges around each corner for every face, which
+// was 40 % of a reconstruction of the dragon; here every edge is known with its twin. Falls
+// back to add_face() where a vertex has more than one border gap (a pinched vertex, whose
+// border cycles need add_face's search).
+template <typename FaceGraph>
+void build_triangle_mesh(FaceGraph& out, std::size_t nv, const std::vector<Index>& tri,
+                         std::vector<typename boost::graph_traits<FaceGraph>::vertex_descriptor>& vd)
 {
   typedef boost::graph_traits<FaceGraph> GT;
   typedef typename GT::halfedge_descriptor halfedge_descriptor;
   typedef typename GT::face_descriptor     face_descriptor;
   Triangle_halfedges th;
-  th.build(vd.size(), tri);
+  th.build(nv, tri);
   const std::size_t nh = th.source.size(), h0 = 3 * th.nf;
-  std::vector<Index> border_out(vd.size(), invalid_index);
+  std::vector<Index> border_out(nv, invalid_index);
   bool pinched = false;
   for(std::size_t g = h0; g < nh && !pinched; ++g)
   {
@@ -67,6 +108,8 @@ void add_triangles(FaceGraph& out, const std::vector<typename boost::graph_trait
     pinched = (th.twin[h] == invalid_index || th.twin[th.twin[h]] != h);
   if(pinched)
   {
+    vd.resize(nv);
+    for(auto& v : vd) v = add_vertex(out);
     std::vector<typename GT::vertex_descriptor> corners(3);
     for(std::size_t p = 0; p < th.nf; ++p)
     {
@@ -76,23 +119,22 @@ void add_triangles(FaceGraph& out, const std::vector<typename boost::graph_trait
     }
     return;
   }
-  reserve(out, static_cast<typename GT::vertices_size_type>(num_vertices(out)),
-          static_cast<typename GT::edges_size_type>(nh / 2), static_cast<typename GT::faces_size_type>(th.nf));
-  std::vector<halfedge_descriptor> hd(nh);
+  std::vector<halfedge_descriptor> edge_halfedge, hd(nh);
+  std::vector<face_descriptor> fd;
+  create_elements(out, nv, nh / 2, th.nf, vd, edge_halfedge, fd);
+  std::size_t e = 0;
   for(std::size_t h = 0; h < nh; ++h)
     if(h < th.twin[h])
     {
-      const halfedge_descriptor a = halfedge(add_edge(out), out);
-      hd[h] = a;
-      hd[th.twin[h]] = opposite(a, out);
+      hd[h] = edge_halfedge[e++];
+      hd[th.twin[h]] = opposite(hd[h], out);
     }
   for(std::size_t p = 0; p < th.nf; ++p)
   {
-    const face_descriptor f = add_face(out);
-    set_halfedge(f, hd[3 * p], out);
+    set_halfedge(fd[p], hd[3 * p], out);
     for(std::size_t k = 3 * p; k < 3 * p + 3; ++k)
     {
-      set_face(hd[k], f, out);
+      set_face(hd[k], fd[p], out);
       set_target(hd[k], vd[th.target[k]], out);
       set_next(hd[k], hd[Triangle_halfedges::next_in_face(static_cast<Index>(k))], out);
       set_halfedge(vd[th.target[k]], hd[k], out);
@@ -268,20 +310,18 @@ void write_output_mesh(const Pyramid<TriangleMesh>& pyr, const std::vector<Index
   else
   {
     clear_keeping_properties(out, 0);
-    reserve(out, static_cast<typename boost::graph_traits<OutputMesh>::vertices_size_type>(verts.size()),
-            static_cast<typename boost::graph_traits<OutputMesh>::edges_size_type>(0),
-            static_cast<typename boost::graph_traits<OutputMesh>::faces_size_type>(0));
     std::vector<Index> row_of(pyr.number_of_input_vertices(), invalid_index);
-    for(Index g : verts)
-    {
-      row_of[g] = static_cast<Index>(ordered.size());
-      ordered.push_back(add_vertex(out));
-      put(vpm, ordered.back(), point(values[0][3 * g], values[0][3 * g + 1], values[0][3 * g + 2]));
-    }
+    for(std::size_t r = 0; r < verts.size(); ++r)
+      row_of[verts[r]] = static_cast<Index>(r);
     std::vector<Index> tri(F.size());
     for(std::size_t i = 0; i < F.size(); ++i)
       tri[i] = row_of[F[i]];
-    add_triangles(out, ordered, tri);
+    build_triangle_mesh(out, verts.size(), tri, ordered);
+    for(std::size_t r = 0; r < verts.size(); ++r)
+    {
+      const std::size_t g = verts[r];
+      put(vpm, ordered[r], point(values[0][3 * g], values[0][3 * g + 1], values[0][3 * g + 2]));
+    }
   }
   // channels, written through the same traits as they were read
   std::vector<double> buf;

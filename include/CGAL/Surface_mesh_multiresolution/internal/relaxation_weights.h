@@ -72,8 +72,71 @@ struct Triangle_halfedges
     n = nv;
     nf = tri.size() / 3;
     const Index h0 = static_cast<Index>(3 * nf);
-    source.resize(h0);
-    target.resize(h0);
+    // outgoing face halfedges of each vertex (counting sort by source), with their targets
+    out_offsets.assign(n + 1, 0);
+    for(Index h = 0; h < h0; ++h)
+      ++out_offsets[tri[h] + 1];
+    for(std::size_t i = 0; i < n; ++i)
+      out_offsets[i + 1] += out_offsets[i];
+    out.resize(h0);
+    out_target.resize(h0);
+    {
+      std::vector<Index> fill(out_offsets.begin(), out_offsets.end() - 1);
+      for(Index h = 0; h < h0; ++h)
+      {
+        const Index k = fill[tri[h]]++;
+        out[k] = h;
+        out_target[k] = tri[next_in_face(h)];
+      }
+    }
+    // twin of a -> b: b's outgoing halfedge towards a. Vertex by vertex (parallel), so that the
+    // 1-rings searched are those of the neighbours of consecutive vertices (near in memory for
+    // meshes whose vertex order has some locality); on a mesh where an edge would be matched
+    // twice (not possible for a valid halfedge mesh) the pairing is redone sequentially, first
+    // come first served.
+    twin.resize(h0);
+    parallel_for_blocks(n, [&](std::size_t first, std::size_t last) {
+      for(std::size_t a = first; a < last; ++a)
+        for(Index k = out_offsets[a]; k < out_offsets[a + 1]; ++k)
+        {
+          const Index b = out_target[k];
+          Index t = invalid_index;
+          for(Index q = out_offsets[b]; q < out_offsets[b + 1]; ++q)
+            if(out_target[q] == a) { t = out[q]; break; }
+          twin[out[k]] = t;
+        }
+    }, 4096);
+    bool symmetric = true;
+    std::size_t border_halfedges = 0;
+    for(Index h = 0; h < h0; ++h)
+    {
+      if(twin[h] == invalid_index)
+        ++border_halfedges;
+      else if(twin[twin[h]] != h)
+        symmetric = false;
+    }
+    if(!symmetric)
+    {
+      std::fill(twin.begin(), twin.end(), invalid_index);
+      border_halfedges = 0;
+      for(Index h = 0; h < h0; ++h)
+      {
+        if(twin[h] != invalid_index)
+          continue;
+        const Index a = tri[h], b = tri[next_in_face(h)];
+        for(Index k = out_offsets[b]; k < out_offsets[b + 1]; ++k)
+          if(out_target[k] == a && twin[out[k]] == invalid_index)
+          {
+            twin[h] = out[k];
+            twin[out[k]] = h;
+            break;
+          }
+        border_halfedges += (twin[h] == invalid_index) ? 1 : 0;
+      }
+    }
+    const std::size_t nh = h0 + border_halfedges;
+    source.resize(nh);
+    target.resize(nh);
     parallel_for_blocks(h0, [&](std::size_t first, std::size_t last) {
       for(std::size_t h = first; h < last; ++h)
       {
@@ -81,96 +144,45 @@ struct Triangle_halfedges
         target[h] = tri[next_in_face(static_cast<Index>(h))];
       }
     });
-    // outgoing face halfedges of each vertex (counting sort by source), with their targets
-    std::vector<Index> off(n + 1, 0), face_out(h0), face_out_target(h0);
-    for(Index h = 0; h < h0; ++h)
-      ++off[source[h] + 1];
-    for(std::size_t i = 0; i < n; ++i)
-      off[i + 1] += off[i];
-    {
-      std::vector<Index> fill(off.begin(), off.end() - 1);
-      for(Index h = 0; h < h0; ++h)
-      {
-        const Index k = fill[source[h]]++;
-        face_out[k] = h;
-        face_out_target[k] = target[h];
-      }
-    }
-    // twin of a -> b: b's outgoing halfedge towards a. Each halfedge looks for its own twin
-    // (parallel); on a mesh where an edge would be matched twice (not possible for a valid
-    // halfedge mesh) the pairing is redone sequentially, first come first served.
-    twin.resize(h0);
-    parallel_for_blocks(h0, [&](std::size_t first, std::size_t last) {
-      for(std::size_t h = first; h < last; ++h)
-      {
-        const Index a = source[h], b = target[h];
-        Index t = invalid_index;
-        for(Index k = off[b]; k < off[b + 1]; ++k)
-          if(face_out_target[k] == a) { t = face_out[k]; break; }
-        twin[h] = t;
-      }
-    });
-    bool symmetric = true;
-    for(Index h = 0; h < h0 && symmetric; ++h)
-      symmetric = (twin[h] == invalid_index || twin[twin[h]] == h);
-    if(!symmetric)
-    {
-      std::fill(twin.begin(), twin.end(), invalid_index);
-      for(Index h = 0; h < h0; ++h)
-      {
-        if(twin[h] != invalid_index)
-          continue;
-        const Index a = source[h], b = target[h];
-        for(Index k = off[b]; k < off[b + 1]; ++k)
-          if(face_out_target[k] == a && twin[face_out[k]] == invalid_index)
-          {
-            twin[h] = face_out[k];
-            twin[face_out[k]] = h;
-            break;
-          }
-      }
-    }
+    if(border_halfedges == 0)                        // closed mesh: the rows are the face halfedges
+      return;
+    // border halfedges, numbered after the face halfedges: each vertex's row gets them at its end
+    twin.resize(nh);
     std::vector<Index> extra(n + 1, 0);
-    std::size_t border_halfedges = 0;
     for(Index h = 0; h < h0; ++h)
       if(twin[h] == invalid_index)
-      {
         ++extra[target[h] + 1];                      // target(h) needs a border halfedge towards source(h)
-        ++border_halfedges;
-      }
-    // rows: the face halfedges, then the border halfedges
-    if(border_halfedges == 0)                        // closed mesh: the rows are the face halfedges
-    {
-      out_offsets.swap(off);
-      out.swap(face_out);
-      out_target.swap(face_out_target);
-      return;
-    }
+    std::vector<Index> face_off;
+    face_off.swap(out_offsets);
     out_offsets.assign(n + 1, 0);
     for(std::size_t i = 0; i < n; ++i)
     {
       extra[i + 1] += extra[i];
-      out_offsets[i + 1] = off[i + 1] + extra[i + 1];
+      out_offsets[i + 1] = face_off[i + 1] + extra[i + 1];
     }
-    out.resize(out_offsets[n]);
-    out_target.resize(out_offsets[n]);
+    std::vector<Index> face_out, face_out_target;
+    face_out.swap(out);
+    face_out_target.swap(out_target);
+    out.resize(nh);
+    out_target.resize(nh);
     std::vector<Index> fill(n);
     for(std::size_t i = 0; i < n; ++i)
     {
-      std::copy(face_out.begin() + off[i], face_out.begin() + off[i + 1], out.begin() + out_offsets[i]);
-      std::copy(face_out_target.begin() + off[i], face_out_target.begin() + off[i + 1], out_target.begin() + out_offsets[i]);
-      fill[i] = out_offsets[i] + (off[i + 1] - off[i]);
+      std::copy(face_out.begin() + face_off[i], face_out.begin() + face_off[i + 1], out.begin() + out_offsets[i]);
+      std::copy(face_out_target.begin() + face_off[i], face_out_target.begin() + face_off[i + 1], out_target.begin() + out_offsets[i]);
+      fill[i] = out_offsets[i] + (face_off[i + 1] - face_off[i]);
     }
+    Index g = h0;
     for(Index h = 0; h < h0; ++h)
       if(twin[h] == invalid_index)
       {
-        const Index g = static_cast<Index>(target.size());
-        source.push_back(target[h]);
-        target.push_back(source[h]);
-        twin.push_back(h);
+        source[g] = target[h];
+        target[g] = source[h];
+        twin[g] = h;
         twin[h] = g;
         out_target[fill[source[g]]] = target[g];
         out[fill[source[g]]++] = g;
+        ++g;
       }
   }
 };
