@@ -602,11 +602,9 @@ TEST_CASE("the candidates' radix sort orders by (cost, halfedge) like a comparis
   CGAL::Random rng(8);
   for(int trial = 0; trial < 4; ++trial)
   {
-    std::vector<SMR::internal::Collapse_candidate> c;
-    const std::size_t n = trial == 0 ? 1 : 20000;
-    for(std::size_t i = 0; i < n; ++i)
+    std::vector<double> cost_of(trial == 0 ? 1 : 20000);
+    for(double& cost : cost_of)
     {
-      double cost;
       switch(rng.get_int(0, 6))
       {
         case 0: cost = 0.; break;
@@ -614,15 +612,20 @@ TEST_CASE("the candidates' radix sort orders by (cost, halfedge) like a comparis
         case 2: cost = 1e-3 * rng.get_int(0, 5); break;                      // exact ties
         case 3: cost = -std::ldexp(rng.get_double(), rng.get_int(-60, 3)); break;
         case 4: cost = trial == 3 ? std::numeric_limits<double>::infinity() : 1.; break;
-        default: cost = std::ldexp(1. + 1e-9 * rng.get_int(0, 3), rng.get_int(-40, 10)); break;   // equal high bits
+        default: cost = std::ldexp(1. + 1e-9 * rng.get_int(0, 3), rng.get_int(-40, 10)); break;   // equal keys, different costs
       }
-      c.push_back(SMR::internal::Collapse_candidate{cost, static_cast<SMR::internal::Index>(i)});
     }
-    auto expected = c;
-    std::sort(expected.begin(), expected.end(), [](const auto& a, const auto& b) { return a.cost < b.cost || (a.cost == b.cost && a.h < b.h); });
-    SMR::internal::sort_candidates(c);
+    std::vector<std::uint64_t> c;
+    std::vector<SMR::internal::Index> expected;
+    for(std::size_t i = 0; i < cost_of.size(); ++i)
+    {
+      c.push_back((std::uint64_t(SMR::internal::cost_key(cost_of[i])) << 32) | i);
+      expected.push_back(static_cast<SMR::internal::Index>(i));
+    }
+    std::sort(expected.begin(), expected.end(), [&](auto a, auto b) { return cost_of[a] < cost_of[b] || (cost_of[a] == cost_of[b] && a < b); });
+    SMR::internal::sort_candidates(c, [&](SMR::internal::Index h) { return cost_of[h]; });
     REQUIRE(c.size() == expected.size());
     for(std::size_t i = 0; i < c.size(); ++i)
-      REQUIRE(c[i].h == expected[i].h);
+      REQUIRE((c[i] & 0xffffffffu) == expected[i]);
   }
 }

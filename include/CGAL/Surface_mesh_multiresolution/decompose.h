@@ -145,59 +145,70 @@ inline bool does_collapse_flip_a_face(const Triangle_halfedges& th, Index h, con
 // An accepted half-edge collapse o -> e, in the rows of its level.
 struct Collapse { Index o, e, h; };
 
-// A candidate collapse: the halfedge o -> e of its level and its cost.
-struct Collapse_candidate { double cost; Index h; };
-
-// Sorts candidates by increasing cost, equal costs in increasing h, given candidates listed
-// in increasing h. Why by hand: a comparison sort of the 6n candidates was the largest part
-// of the decomposition (16 % of the dragon's). This is a stable LSD radix sort on the high 32
-// bits of the costs' order-preserving integer images (sign, exponent, 20 bits of mantissa;
-// 3 passes of 11 bits, a pass skipped when all candidates share its digit), then a comparison
-// sort inside each run of equal high bits, which is short. Sequential, hence deterministic.
-inline void sort_candidates(std::vector<Collapse_candidate>& c)
+// The high 32 bits of the order-preserving integer image of a cost (sign, exponent and 20 bits
+// of mantissa): a < b implies cost_key(a) <= cost_key(b).
+inline std::uint32_t cost_key(double x)
 {
-  auto key = [](double x) {
-    x += 0.;                                              // -0 -> +0: equal costs, equal keys
-    std::uint64_t b;
-    std::memcpy(&b, &x, sizeof b);
-    b = (b >> 63) ? ~b : (b | (std::uint64_t(1) << 63));
-    return static_cast<std::uint32_t>(b >> 32);
-  };
+  x += 0.;                                                // -0 -> +0: equal costs, equal keys
+  std::uint64_t b;
+  std::memcpy(&b, &x, sizeof b);
+  b = (b >> 63) ? ~b : (b | (std::uint64_t(1) << 63));
+  return static_cast<std::uint32_t>(b >> 32);
+}
+
+// Sorts candidates c[i] = cost_key(cost(h)) << 32 | h, given in increasing h, by increasing
+// cost, equal costs in increasing h; cost(h) gives the cost of halfedge h again (the same
+// double: it is a deterministic function). Why by hand: a comparison sort of the 6n candidates
+// was the largest part of the decomposition (16 % of the dragon's), and candidates holding
+// their costs took 16 bytes each. This is a stable LSD radix sort of 8-byte candidates on their
+// keys (3 passes of 11 bits, a pass skipped when all candidates share its digit), then a
+// comparison sort by the exact costs inside each run of equal keys, which is short.
+// Sequential, hence deterministic.
+template <typename CostOfHalfedge>
+void sort_candidates(std::vector<std::uint64_t>& c, const CostOfHalfedge& cost)
+{
   const std::size_t n = c.size();
-  constexpr int digits = 3, shift[digits] = {0, 11, 22};
-  constexpr std::uint32_t mask = (1u << 11) - 1;
+  constexpr int digits = 3, shift[digits] = {32, 43, 54};
+  constexpr std::uint64_t mask = (1u << 11) - 1;
   std::vector<std::size_t> count(digits * (mask + 1), 0);
-  for(const Collapse_candidate& x : c)
-  {
-    const std::uint32_t k = key(x.cost);
+  for(const std::uint64_t x : c)
     for(int d = 0; d < digits; ++d)
-      ++count[d * (mask + 1) + ((k >> shift[d]) & mask)];
-  }
-  std::vector<Collapse_candidate> scratch(n);
-  Collapse_candidate* from = c.data();
-  Collapse_candidate* to = scratch.data();
+      ++count[d * (mask + 1) + ((x >> shift[d]) & mask)];
+  std::vector<std::uint64_t> scratch(n);
+  std::uint64_t* from = c.data();
+  std::uint64_t* to = scratch.data();
   for(int d = 0; d < digits; ++d)
   {
     std::size_t* pos = count.data() + d * (mask + 1);
     if(std::find(pos, pos + mask + 1, n) != pos + mask + 1)
       continue;                                           // one digit for all: nothing to do
     std::size_t sum = 0;
-    for(std::uint32_t b = 0; b <= mask; ++b) { const std::size_t t = pos[b]; pos[b] = sum; sum += t; }
+    for(std::size_t b = 0; b <= mask; ++b) { const std::size_t t = pos[b]; pos[b] = sum; sum += t; }
     for(std::size_t i = 0; i < n; ++i)
-      to[pos[(key(from[i].cost) >> shift[d]) & mask]++] = from[i];
+      to[pos[(from[i] >> shift[d]) & mask]++] = from[i];
     std::swap(from, to);
   }
   if(from != c.data())
     std::copy(from, from + n, c.data());
-  auto less = [](const Collapse_candidate& a, const Collapse_candidate& b) { return a.cost < b.cost || (a.cost == b.cost && a.h < b.h); };
+  scratch = std::vector<std::uint64_t>();
+  std::vector<std::pair<double, Index> > run;
   for(std::size_t i = 0; i < n;)
   {
-    const std::uint32_t k = key(c[i].cost);
     std::size_t j = i + 1;
-    while(j < n && key(c[j].cost) == k)
+    while(j < n && (c[j] >> 32) == (c[i] >> 32))
       ++j;
     if(j - i > 1)
-      std::sort(c.begin() + i, c.begin() + j, less);
+    {
+      run.clear();
+      for(std::size_t q = i; q < j; ++q)
+      {
+        const Index h = static_cast<Index>(c[q] & 0xffffffffu);
+        run.emplace_back(cost(h), h);
+      }
+      std::sort(run.begin(), run.end());                  // (cost, h): equal costs keep increasing h
+      for(std::size_t q = i; q < j; ++q)
+        c[q] = (c[q] & ~std::uint64_t(0xffffffffu)) | run[q - i].second;
+    }
     i = j;
   }
 }
@@ -219,32 +230,32 @@ void select_collapses(const Triangle_halfedges& th, const double* xyz, const Cos
   on_border.assign(th.n, 0);
   for(Index h = static_cast<Index>(3 * th.nf); h < nh; ++h)   // the border halfedges come last
     on_border[th.source[h]] = on_border[th.target[h]] = 1;
-  // costs in parallel (TBB), each into its own slot; refused collapses marked with NaN
-  std::vector<Collapse_candidate> candidates(nh);
+  // the cost of a candidate halfedge, NaN for a refused collapse
+  auto cost_of = [&](Index h) {
+    if(on_border[th.source[h]] && !th.is_border_edge(h))    // border vertices move along the border only
+      return std::numeric_limits<double>::quiet_NaN();
+    const Optional<double> oc = cost(th.source[h], th.target[h]);
+    return oc ? *oc : std::numeric_limits<double>::quiet_NaN();
+  };
+  // keys in parallel (TBB), each into its own slot; refused collapses dropped
+  constexpr std::uint64_t refused = ~std::uint64_t(0);     // no halfedge has number 2^32 - 1
+  std::vector<std::uint64_t> candidates(nh);
   parallel_for_blocks(nh, [&](std::size_t first, std::size_t last) {
     for(std::size_t i = first; i < last; ++i)
     {
-      const Index h = static_cast<Index>(i);
-      double c = std::numeric_limits<double>::quiet_NaN();
-      if(!on_border[th.source[h]] || th.is_border_edge(h))     // border vertices move along the border only
-      {
-        const Optional<double> oc = cost(th.source[h], th.target[h]);
-        if(oc && !std::isnan(*oc))
-          c = *oc;
-      }
-      candidates[i] = Collapse_candidate{c, h};
+      const double c = cost_of(static_cast<Index>(i));
+      candidates[i] = std::isnan(c) ? refused : ((std::uint64_t(cost_key(c)) << 32) | i);
     }
   }, 4096);
-  candidates.erase(std::remove_if(candidates.begin(), candidates.end(), [](const Collapse_candidate& c) { return std::isnan(c.cost); }),
-                   candidates.end());
-  sort_candidates(candidates);
+  candidates.erase(std::remove(candidates.begin(), candidates.end(), refused), candidates.end());
+  sort_candidates(candidates, cost_of);
   locked.assign(th.n, 0);
   accepted.clear();
-  for(const Collapse_candidate& candidate : candidates)
+  for(const std::uint64_t candidate : candidates)
   {
     if(accepted.size() >= budget)
       break;
-    const Index h = candidate.h, o = th.source[h], e = th.target[h];
+    const Index h = static_cast<Index>(candidate & 0xffffffffu), o = th.source[h], e = th.target[h];
     if(locked[o] || locked[e])
       continue;
     if(!satisfies_link_condition(th, h, on_border) || does_collapse_flip_a_face(th, h, xyz))
@@ -397,9 +408,7 @@ Pyramid<TriangleMesh> decompose(const TriangleMesh& tm, const NamedParameters& n
   std::vector<unsigned char> alive(n0, 1);
   std::vector<Index> row_of(n0, internal::invalid_index);
   std::size_t live = n0;
-  internal::Relaxation_weight_builder builder;
-  std::vector<Index> rows_to_vertices, tri_rows;
-  std::vector<double> xyz, f;
+  std::vector<Index> rows_to_vertices;
   std::vector<unsigned char> on_border, locked;
   std::vector<internal::Collapse> accepted;
   std::vector<std::pair<Index, std::array<Index, 3> > > removed;
@@ -418,14 +427,16 @@ Pyramid<TriangleMesh> decompose(const TriangleMesh& tm, const NamedParameters& n
         rows_to_vertices.push_back(g);
       }
     const std::size_t nk = rows_to_vertices.size();
-    tri_rows.resize(F.size());
+    // the temporary arrays of a level live in its iteration: their memory follows the level's size
+    std::vector<Index> tri_rows(F.size());
     internal::parallel_for_blocks(F.size(), [&](std::size_t first, std::size_t last) {
       for(std::size_t i = first; i < last; ++i)
         tri_rows[i] = row_of[F[i]];
     });
-    xyz.resize(3 * nk);
+    std::vector<double> xyz(3 * nk), f;
     for(std::size_t r = 0; r < nk; ++r)
       internal::copy_values(values[0].data() + 3 * std::size_t(rows_to_vertices[r]), 3, xyz.data() + 3 * r);
+    internal::Relaxation_weight_builder builder;
     builder.set_connectivity(nk, tri_rows);
     const internal::Triangle_halfedges& th = builder.connectivity();
     if(k == 0)
@@ -506,6 +517,7 @@ Pyramid<TriangleMesh> decompose(const TriangleMesh& tm, const NamedParameters& n
       alive[o] = 0;
       --live;
     }
+    cost_model.retain(alive);
     // the face array of M_{k+1}: the removed faces taken out
     std::sort(removed.begin(), removed.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
     std::size_t write = 0, next_removed = 0;
@@ -518,6 +530,7 @@ Pyramid<TriangleMesh> decompose(const TriangleMesh& tm, const NamedParameters& n
       ++write;
     }
     F.resize(3 * write);
+    F.shrink_to_fit();
     level.removed_face_positions.reserve(removed.size());
     level.removed_faces.reserve(3 * removed.size());
     for(const auto& r : removed)

@@ -158,6 +158,7 @@ public:
   }
 
   void initialize(const Triangle_halfedges&, const std::vector<double>&) {}
+  void retain(const std::vector<unsigned char>&) {}
 
   Optional<double> cost(Index o, Index e) const { return m_adapter->cost(work_halfedge(o, e)); }
 

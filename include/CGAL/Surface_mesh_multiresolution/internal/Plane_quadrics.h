@@ -41,6 +41,9 @@ public:
   {
     m_xyz = &xyz;
     m_q.assign(size * th.n, 0.);
+    m_slot.resize(th.n);
+    for(std::size_t v = 0; v < th.n; ++v)
+      m_slot[v] = static_cast<Index>(v);
     for(std::size_t f = 0; f < th.nf; ++f)
     {
       const Index h0 = static_cast<Index>(3 * f);
@@ -80,8 +83,8 @@ public:
   // cost of moving vertex o onto vertex e (input numbers)
   Optional<double> cost(Index o, Index e) const
   {
-    const double* a = m_q.data() + size * std::size_t(o);
-    const double* b = m_q.data() + size * std::size_t(e);
+    const double* a = quadric(o);
+    const double* b = quadric(e);
     const double* x = point(e);
     double s[size];
     for(std::size_t i = 0; i < size; ++i)
@@ -91,10 +94,31 @@ public:
 
   void collapse(Index o, Index e)
   {
-    double* a = m_q.data() + size * std::size_t(o);
-    double* b = m_q.data() + size * std::size_t(e);
+    const double* a = quadric(o);
+    double* b = m_q.data() + size * std::size_t(m_slot[e]);
     for(std::size_t i = 0; i < size; ++i)
       b[i] = a[i] + b[i];
+  }
+
+  // keeps the quadrics of the vertices still alive only (the memory follows the level's size)
+  void retain(const std::vector<unsigned char>& alive)
+  {
+    std::size_t live = 0;
+    for(std::size_t v = 0; v < alive.size(); ++v)
+      live += alive[v] ? 1 : 0;
+    std::vector<double> q(size * live);
+    Index next = 0;
+    for(std::size_t v = 0; v < alive.size(); ++v)
+    {
+      if(!alive[v])
+      {
+        m_slot[v] = invalid_index;
+        continue;
+      }
+      std::copy(quadric(static_cast<Index>(v)), quadric(static_cast<Index>(v)) + size, q.data() + size * std::size_t(next));
+      m_slot[v] = next++;
+    }
+    m_q.swap(q);
   }
 
   // x^T Q x for the homogeneous point (x, 1)
@@ -106,7 +130,7 @@ public:
          + s[9];
   }
 
-  const double* quadric(Index v) const { return m_q.data() + size * std::size_t(v); }
+  const double* quadric(Index v) const { return m_q.data() + size * std::size_t(m_slot[v]); }
 
 private:
   const double* point(Index v) const { return m_xyz->data() + 3 * std::size_t(v); }
@@ -141,13 +165,14 @@ private:
 
   void add(Index v, const double* quadric, double factor)
   {
-    double* q = m_q.data() + size * std::size_t(v);
+    double* q = m_q.data() + size * std::size_t(m_slot[v]);
     for(std::size_t i = 0; i < size; ++i)
       q[i] += factor * quadric[i];
   }
 
   const std::vector<double>* m_xyz = nullptr;
-  std::vector<double> m_q;
+  std::vector<double> m_q;        // 10 coefficients per slot
+  std::vector<Index> m_slot;      // vertex -> slot
 };
 
 } // namespace internal
