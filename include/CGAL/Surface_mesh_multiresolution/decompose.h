@@ -156,14 +156,14 @@ inline std::uint32_t cost_key(double x)
   return static_cast<std::uint32_t>(b >> 32);
 }
 
-// Sorts candidates c[i] = cost_key(cost(h)) << 32 | h, given in increasing h, by increasing
+// Sorts candidates c[i] = cost_key(cost(h)) << 32 | h, given in any order, by increasing
 // cost, equal costs in increasing h; cost(h) gives the cost of halfedge h again (the same
 // double: it is a deterministic function). Why by hand: a comparison sort of the 6n candidates
 // was the largest part of the decomposition (16 % of the dragon's), and candidates holding
 // their costs took 16 bytes each. This is a stable LSD radix sort of 8-byte candidates on their
 // keys (3 passes of 11 bits, a pass skipped when all candidates share its digit), then a
-// comparison sort by the exact costs inside each run of equal keys, which is short.
-// Sequential, hence deterministic.
+// comparison sort by the exact costs and h inside each run of equal keys (short), which makes
+// the order total whatever the input order. Sequential, hence deterministic.
 template <typename CostOfHalfedge>
 void sort_candidates(std::vector<std::uint64_t>& c, const CostOfHalfedge& cost)
 {
@@ -231,22 +231,27 @@ void select_collapses(const Triangle_halfedges& th, const double* xyz, const Cos
   for(Index h = static_cast<Index>(3 * th.nf); h < nh; ++h)   // the border halfedges come last
     on_border[th.source[h]] = on_border[th.target[h]] = 1;
   // the cost of a candidate halfedge, NaN for a refused collapse
-  auto cost_of = [&](Index h) {
-    if(on_border[th.source[h]] && !th.is_border_edge(h))    // border vertices move along the border only
+  auto cost_of_edge = [&](Index h, Index o, Index e) {
+    if(on_border[o] && !th.is_border_edge(h))               // border vertices move along the border only
       return std::numeric_limits<double>::quiet_NaN();
-    const Optional<double> oc = cost(th.source[h], th.target[h]);
+    const Optional<double> oc = cost(o, e);
     return oc ? *oc : std::numeric_limits<double>::quiet_NaN();
   };
-  // keys in parallel (TBB), each into its own slot; refused collapses dropped
+  auto cost_of = [&](Index h) { return cost_of_edge(h, th.source[h], th.target[h]); };
+  // keys in parallel (TBB), vertex by vertex (the quadric and position of o are read once
+  // for its 1-ring, those of its neighbours are near in memory), each into its own slot;
+  // refused collapses dropped
   constexpr std::uint64_t refused = ~std::uint64_t(0);     // no halfedge has number 2^32 - 1
   std::vector<std::uint64_t> candidates(nh);
-  parallel_for_blocks(nh, [&](std::size_t first, std::size_t last) {
-    for(std::size_t i = first; i < last; ++i)
-    {
-      const double c = cost_of(static_cast<Index>(i));
-      candidates[i] = std::isnan(c) ? refused : ((std::uint64_t(cost_key(c)) << 32) | i);
-    }
-  }, 4096);
+  parallel_for_blocks(th.n, [&](std::size_t first, std::size_t last) {
+    for(std::size_t o = first; o < last; ++o)
+      for(Index k = th.out_offsets[o]; k < th.out_offsets[o + 1]; ++k)
+      {
+        const Index h = th.out[k];
+        const double c = cost_of_edge(h, static_cast<Index>(o), th.out_target[k]);
+        candidates[k] = std::isnan(c) ? refused : ((std::uint64_t(cost_key(c)) << 32) | h);
+      }
+  }, 1024);
   candidates.erase(std::remove(candidates.begin(), candidates.end(), refused), candidates.end());
   sort_candidates(candidates, cost_of);
   locked.assign(th.n, 0);
@@ -280,6 +285,21 @@ struct Plane_quadric_collapse_cost : Plane_quadrics
   template <typename TriangleMesh, typename VertexPointMap, typename VertexIndexMap, typename GeomTraits, typename UserCost>
   Plane_quadric_collapse_cost(const TriangleMesh&, VertexPointMap, VertexIndexMap, const Indexed_mesh<TriangleMesh>&,
                               const GeomTraits&, const UserCost&) {}
+
+  void begin_level(const std::vector<Index>& rows_to_vertices, const std::vector<double>& xyz)
+  {
+    m_rows = &rows_to_vertices;
+    Plane_quadrics::begin_level(xyz);
+  }
+  // the quadrics of the vertices still alive, by row of the next level
+  void end_level(const std::vector<unsigned char>& alive)
+  {
+    const std::vector<Index>& rows = *m_rows;
+    retain(rows.size(), [&](std::size_t r) { return alive[rows[r]] != 0; });
+  }
+
+private:
+  const std::vector<Index>* m_rows = nullptr;
 };
 
 } // namespace internal
@@ -441,10 +461,11 @@ Pyramid<TriangleMesh> decompose(const TriangleMesh& tm, const NamedParameters& n
     const internal::Triangle_halfedges& th = builder.connectivity();
     if(k == 0)
       cost_model.initialize(th, values[0]);   // on M_0, rows are the input's vertex numbers
+    cost_model.begin_level(rows_to_vertices, xyz);
 
     // ---- select the odd vertices (greedy independent set of half-edge collapses)
     internal::select_collapses(th, xyz.data(),
-                               [&](Index o, Index e) { return cost_model.cost(rows_to_vertices[o], rows_to_vertices[e]); },
+                               [&](Index o, Index e) { return cost_model.cost(o, e); },
                                live - min_vertices, on_border, locked, accepted);
     if(accepted.empty())
       break;
@@ -513,11 +534,11 @@ Pyramid<TriangleMesh> decompose(const TriangleMesh& tm, const NamedParameters& n
           t[g % 3] = e;
         }
       }
-      cost_model.collapse(o, e);
+      cost_model.collapse(c.o, c.e);
       alive[o] = 0;
       --live;
     }
-    cost_model.retain(alive);
+    cost_model.end_level(alive);
     // the face array of M_{k+1}: the removed faces taken out
     std::sort(removed.begin(), removed.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
     std::size_t write = 0, next_removed = 0;

@@ -132,7 +132,7 @@ struct Get_cost_holder<GetCost, TriangleMesh, true>
 // (a halfedge mesh of the input's type) on which the policy reads its `Edge_profile`s and
 // whose collapses follow the accepted ones, so that stateful policies see the quadrics they
 // expect. The selection itself runs on index arrays; this model only answers
-// cost(o, e) and applies collapse(o, e), with the input's vertex numbers.
+// cost(o, e) and applies collapse(o, e), for rows o and e of the current level.
 // (The default plane quadrics are evaluated without a working copy: Plane_quadrics.h.)
 template <typename TriangleMesh, typename GeomTraits, typename GetCost>
 class Sms_collapse_cost
@@ -158,12 +158,14 @@ public:
   }
 
   void initialize(const Triangle_halfedges&, const std::vector<double>&) {}
-  void retain(const std::vector<unsigned char>&) {}
+  void begin_level(const std::vector<Index>& rows_to_vertices, const std::vector<double>&) { m_rows = &rows_to_vertices; }
+  void end_level(const std::vector<unsigned char>&) {}
 
-  Optional<double> cost(Index o, Index e) const { return m_adapter->cost(work_halfedge(o, e)); }
+  Optional<double> cost(Index o, Index e) const { return m_adapter->cost(work_halfedge((*m_rows)[o], (*m_rows)[e])); }
 
-  void collapse(Index o, Index e)
+  void collapse(Index ro, Index re)
   {
+    const Index o = (*m_rows)[ro], e = (*m_rows)[re];
     const halfedge_descriptor h = work_halfedge(o, e);
     const auto pe = get(m_wpm, m_wv[e]);
     m_adapter->before_collapse(h);
@@ -184,6 +186,7 @@ private:
   TriangleMesh m_work;
   Work_point_map m_wpm;
   std::vector<vertex_descriptor> m_wv;   // input vertex number -> vertex of the working copy
+  const std::vector<Index>* m_rows = nullptr;   // row of the current level -> input vertex number
   std::unique_ptr<Get_cost_holder<GetCost, TriangleMesh> > m_holder;
   std::unique_ptr<Adapter> m_adapter;
 };

@@ -23,7 +23,9 @@ namespace internal {
 // the sum of the plane quadrics of its faces (unit normal of the face, plane through it) and,
 // for every border edge at the vertex, 100 times the quadric of the plane through that edge
 // perpendicular to its face; after a collapse o -> e, Q_e becomes Q_o + Q_e. The cost of
-// moving o onto e is (Q_o + Q_e)(p_e).
+// moving o onto e is (Q_o + Q_e)(p_e). Quadrics and positions are stored by row of the
+// current level (the vertices of M_k in increasing input number), so that the cost of a
+// candidate reads two contiguous records without any index translation.
 // Why by hand: SMS evaluates the same numbers through an `Edge_profile` built per candidate on
 // a halfedge mesh and stores 16 doubles per vertex; here a quadric is its 10 distinct
 // coefficients, read directly from contiguous arrays (the decomposition needs no working
@@ -39,11 +41,8 @@ public:
   // th: the connectivity of the input (rows = vertex numbers), xyz: 3 doubles per vertex
   void initialize(const Triangle_halfedges& th, const std::vector<double>& xyz)
   {
-    m_xyz = &xyz;
+    m_xyz = xyz.data();
     m_q.assign(size * th.n, 0.);
-    m_slot.resize(th.n);
-    for(std::size_t v = 0; v < th.n; ++v)
-      m_slot[v] = static_cast<Index>(v);
     for(std::size_t f = 0; f < th.nf; ++f)
     {
       const Index h0 = static_cast<Index>(3 * f);
@@ -80,7 +79,10 @@ public:
     }
   }
 
-  // cost of moving vertex o onto vertex e (input numbers)
+  // a new level: xyz holds the positions of its rows (the quadrics follow them, see retain())
+  void begin_level(const std::vector<double>& xyz) { m_xyz = xyz.data(); }
+
+  // cost of moving row o onto row e
   Optional<double> cost(Index o, Index e) const
   {
     const double* a = quadric(o);
@@ -95,30 +97,26 @@ public:
   void collapse(Index o, Index e)
   {
     const double* a = quadric(o);
-    double* b = m_q.data() + size * std::size_t(m_slot[e]);
+    double* b = m_q.data() + size * std::size_t(e);
     for(std::size_t i = 0; i < size; ++i)
       b[i] = a[i] + b[i];
   }
 
-  // keeps the quadrics of the vertices still alive only (the memory follows the level's size)
-  void retain(const std::vector<unsigned char>& alive)
+  // keeps the quadrics of the rows for which keep(row) holds, in order: the rows of the next
+  // level (the memory follows the level's size)
+  template <typename Keep>
+  void retain(std::size_t rows, const Keep& keep)
   {
-    std::size_t live = 0;
-    for(std::size_t v = 0; v < alive.size(); ++v)
-      live += alive[v] ? 1 : 0;
-    std::vector<double> q(size * live);
-    Index next = 0;
-    for(std::size_t v = 0; v < alive.size(); ++v)
-    {
-      if(!alive[v])
+    std::size_t next = 0;
+    for(std::size_t r = 0; r < rows; ++r)
+      if(keep(r))
       {
-        m_slot[v] = invalid_index;
-        continue;
+        if(next != r)
+          std::copy(m_q.begin() + size * r, m_q.begin() + size * (r + 1), m_q.begin() + size * next);
+        ++next;
       }
-      std::copy(quadric(static_cast<Index>(v)), quadric(static_cast<Index>(v)) + size, q.data() + size * std::size_t(next));
-      m_slot[v] = next++;
-    }
-    m_q.swap(q);
+    m_q.resize(size * next);
+    m_q.shrink_to_fit();
   }
 
   // x^T Q x for the homogeneous point (x, 1)
@@ -130,10 +128,10 @@ public:
          + s[9];
   }
 
-  const double* quadric(Index v) const { return m_q.data() + size * std::size_t(m_slot[v]); }
+  const double* quadric(Index v) const { return m_q.data() + size * std::size_t(v); }
 
 private:
-  const double* point(Index v) const { return m_xyz->data() + 3 * std::size_t(v); }
+  const double* point(Index v) const { return m_xyz + 3 * std::size_t(v); }
 
   // n = (q - p) x (r - p)
   static void cross_difference(const double* q, const double* r, const double* p, double* n)
@@ -165,14 +163,13 @@ private:
 
   void add(Index v, const double* quadric, double factor)
   {
-    double* q = m_q.data() + size * std::size_t(m_slot[v]);
+    double* q = m_q.data() + size * std::size_t(v);
     for(std::size_t i = 0; i < size; ++i)
       q[i] += factor * quadric[i];
   }
 
-  const std::vector<double>* m_xyz = nullptr;
-  std::vector<double> m_q;        // 10 coefficients per slot
-  std::vector<Index> m_slot;      // vertex -> slot
+  const double* m_xyz = nullptr;  // 3 per row
+  std::vector<double> m_q;        // 10 coefficients per row
 };
 
 } // namespace internal
