@@ -632,3 +632,56 @@ TEST_CASE("the candidates' radix sort orders by (cost, halfedge) like a comparis
       REQUIRE((c[i] & 0xffffffffu) == expected[i]);
   }
 }
+
+TEST_CASE("the index-based link condition agrees with CGAL's on every edge", "[pyramid][link]")
+{
+  std::vector<Mesh> meshes;
+  meshes.push_back(smr_test::icosphere<Mesh>(1));
+  meshes.push_back(smr_test::planar_grid<Mesh>(6, 0.2));
+  {
+    Mesh t;
+    CGAL::make_tetrahedron(Point_3(0, 0, 0), Point_3(1, 0, 0), Point_3(0, 1, 0), Point_3(0, 0, 1), t);
+    meshes.push_back(t);
+  }
+  {
+    // a triangle split at its centre: an interior vertex of valence 3 next to border vertices of valence 3
+    Mesh t;
+    const auto a = t.add_vertex(Point_3(0, 0, 0)), b = t.add_vertex(Point_3(1, 0, 0)), c = t.add_vertex(Point_3(0, 1, 0));
+    const auto o = t.add_vertex(Point_3(0.3, 0.3, 0));
+    t.add_face(a, b, o); t.add_face(b, c, o); t.add_face(c, a, o);
+    meshes.push_back(t);
+  }
+  {
+    Mesh t;   // an octahedron's upper half: a square pyramid with its base open, and the same closed by two triangles
+    std::vector<Mesh::Vertex_index> v;
+    for(const Point_3& p : {Point_3(1, 0, 0), Point_3(0, 1, 0), Point_3(-1, 0, 0), Point_3(0, -1, 0), Point_3(0, 0, 1)}) v.push_back(t.add_vertex(p));
+    for(int i = 0; i < 4; ++i) t.add_face(v[i], v[(i + 1) % 4], v[4]);
+    meshes.push_back(t);
+    t.add_face(v[0], v[2], v[1]);
+    t.add_face(v[0], v[3], v[2]);
+    meshes.push_back(t);
+  }
+  for(const Mesh& m : meshes)
+  {
+    REQUIRE(CGAL::is_valid_polygon_mesh(m));
+    SMR::internal::Indexed_mesh<Mesh> im;
+    SMR::internal::build_indexed_mesh(m, get(CGAL::vertex_index, m), im);
+    SMR::internal::Triangle_halfedges th;
+    th.build(im.number_of_vertices(), im.triangles);
+    std::vector<unsigned char> on_border(th.n, 0);
+    for(std::size_t h = 3 * th.nf; h < th.source.size(); ++h)
+      on_border[th.source[h]] = on_border[th.target[h]] = 1;
+    std::size_t compared = 0, refused = 0;
+    for(SMR::internal::Index h = 0; h < th.source.size(); ++h)
+    {
+      const auto he = halfedge(im.vertices[th.source[h]], im.vertices[th.target[h]], m);
+      REQUIRE(he.second);
+      const bool expected = CGAL::Euler::does_satisfy_link_condition(edge(he.first, m), m);
+      CHECK(SMR::internal::satisfies_link_condition(th, h, on_border) == expected);
+      refused += expected ? 0 : 1;
+      ++compared;
+    }
+    CHECK(compared == halfedges(m).size());
+    INFO("refused: " << refused);
+  }
+}

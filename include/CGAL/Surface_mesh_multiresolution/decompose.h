@@ -106,7 +106,9 @@ inline bool satisfies_link_condition(const Triangle_halfedges& th, Index h, cons
   {
     if(on_border[o] && on_border[e])
       return false;
-    if(o_last - o_first == 3 && e_last - e_first == 3)   // closed component of 4 vertices of valence 3
+    // two interior vertices of valence 3 on an interior edge: a closed tetrahedron (the 1-ring
+    // of each is a triangle whose edges all carry two faces)
+    if(!on_border[o] && !on_border[e] && o_last - o_first == 3 && e_last - e_first == 3)
       return false;
     if(apex_top == apex_bottom)
       return false;
@@ -348,7 +350,7 @@ private:
  *     \cgalParamDescription{the cost of a half-edge collapse: any model of the SMS concept `GetCost`, evaluated with the target's position as placement}
  *     \cgalParamType{a model of `GetCost`}
  *     \cgalParamDefault{`CGAL::Surface_mesh_simplification::GarlandHeckbert_plane_policies<TriangleMesh\, GeomTraits>`}
- *     \cgalParamExtra{a policy with per-vertex state (the Garland-Heckbert family) is re-created with its default parameters on the package's working copy of the mesh}
+ *     \cgalParamExtra{the default plane policies are evaluated on index arrays (the same quadrics, no halfedge mesh); any other policy reads SMS edge profiles on a working copy of the mesh, and one with per-vertex state (the rest of the Garland-Heckbert family) is re-created there with its default parameters}
  *   \cgalParamNEnd
  *   \cgalParamNBegin{vertex_point_map}
  *     \cgalParamDescription{a property map associating points to the vertices of `tm`}
