@@ -224,6 +224,16 @@ TEST_CASE("exact round trip with colours and several channels", "[pyramid][round
   SMR::reconstruct(pyr, out, SMR::parameters::level(2).vertex_attribute_maps(std::make_tuple(oc, ot, ouv)));
   CHECK(num_vertices(out) == pyr.number_of_vertices(2));
   CHECK(out.property_map<Mesh::Vertex_index, CGAL::IO::Color>("v:color").second);
+  // into a mesh holding removed, uncollected elements: a valid mesh, the input exactly
+  CGAL::Euler::remove_center_vertex(halfedge(*vertices(out).begin(), out), out);
+  REQUIRE(out.has_garbage());
+  SMR::reconstruct(pyr, out, SMR::parameters::vertex_attribute_maps(std::make_tuple(oc, ot, ouv)));
+  REQUIRE(CGAL::is_valid_polygon_mesh(out));
+  CHECK_FALSE(out.has_garbage());
+  CHECK(smr_test::positions_in_order(out) == smr_test::positions_in_order(m));
+  CHECK(face_set(out) == face_set(m));
+  for(auto v : vertices(m))
+    CHECK(oc[v] == color[v]);
   // wrong attribute maps are refused
   REQUIRE_THROWS_AS(SMR::reconstruct(pyr, out, SMR::parameters::vertex_attribute_maps(std::make_tuple(oc, ot))), std::invalid_argument);
   REQUIRE_THROWS_AS(SMR::reconstruct(pyr, out, SMR::parameters::vertex_attribute_maps(std::make_tuple(ot, oc, ouv))), std::invalid_argument);
