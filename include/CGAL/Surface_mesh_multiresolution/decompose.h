@@ -145,7 +145,7 @@ inline bool does_collapse_flip_a_face(const Triangle_halfedges& th, Index h, con
 }
 
 // An accepted half-edge collapse o -> e, in the rows of its level.
-struct Collapse { Index o, e, h; };
+struct Collapse { Index o, e; };
 
 // The high 32 bits of the order-preserving integer image of a cost (sign, exponent and 20 bits
 // of mantissa): a < b implies cost_key(a) <= cost_key(b).
@@ -270,7 +270,7 @@ void select_collapses(const Triangle_halfedges& th, const double* xyz, const Cos
     locked[o] = 1;
     for(Index k = th.out_offsets[o]; k < th.out_offsets[o + 1]; ++k)
       locked[th.out_target[k]] = 1;
-    accepted.push_back(Collapse{o, e, h});
+    accepted.push_back(Collapse{o, e});
   }
 }
 

@@ -19,6 +19,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <stdexcept>
 #include <vector>
 
 namespace CGAL {
@@ -67,8 +68,11 @@ struct Triangle_halfedges
   // the third vertex of the face of h (h must have a face)
   Index opposite_vertex(Index h) const { return target[next_in_face(h)]; }
 
+  // \throws std::invalid_argument when the halfedges (up to 6 per face) cannot be numbered by Index
   void build(std::size_t nv, const std::vector<Index>& tri)
   {
+    if(tri.size() / 3 >= std::size_t(invalid_index) / 6)
+      throw std::invalid_argument("the mesh has too many faces (at most (2^32-1)/6 are supported)");
     n = nv;
     nf = tri.size() / 3;
     const Index h0 = static_cast<Index>(3 * nf);
