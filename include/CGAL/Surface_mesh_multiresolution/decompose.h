@@ -62,21 +62,37 @@ inline void compute_details(const Sparse_weights& w, const Pyramid_level& level,
   }
 }
 
+// The rows (in M_k) of the vertices the odd vertices of `level` collapse into.
+inline void collapse_target_rows(const Pyramid_level& level, std::vector<Index>& target_rows)
+{
+  target_rows.resize(level.collapse_targets.size());
+  for(std::size_t q = 0; q < target_rows.size(); ++q)
+    target_rows[q] = static_cast<Index>(std::lower_bound(level.vertices.begin(), level.vertices.end(), level.collapse_targets[q])
+                                        - level.vertices.begin());
+}
+
 // The details and corrections of one channel on one level from its values on all input
 // vertices (global numbers): the analysis of compute_details() for a pyramid whose
 // connectivity and weights are already known (re-analysis after a change of the values).
-inline void analyse_level_values(const Pyramid_level& level, std::size_t dim, const std::vector<double>& v,
-                                 std::vector<double>& details, std::vector<std::pair<Index, double> >& corrections)
+// target_rows: collapse_target_rows() of the level (callers analysing a level repeatedly
+// compute them once).
+inline void analyse_level_values(const Pyramid_level& level, const std::vector<Index>& target_rows, std::size_t dim,
+                                 const std::vector<double>& v, std::vector<double>& details,
+                                 std::vector<std::pair<Index, double> >& corrections)
 {
   const std::size_t n = level.vertices.size();
   std::vector<double> f(n * dim);
   for(std::size_t r = 0; r < n; ++r)
     copy_values(v.data() + std::size_t(level.vertices[r]) * dim, dim, f.data() + r * dim);
-  std::vector<Index> target_rows(level.collapse_targets.size());
-  for(std::size_t q = 0; q < target_rows.size(); ++q)
-    target_rows[q] = static_cast<Index>(std::lower_bound(level.vertices.begin(), level.vertices.end(), level.collapse_targets[q])
-                                        - level.vertices.begin());
   compute_details(level.weights, level, target_rows, f, dim, details, corrections);
+}
+
+inline void analyse_level_values(const Pyramid_level& level, std::size_t dim, const std::vector<double>& v,
+                                 std::vector<double>& details, std::vector<std::pair<Index, double> >& corrections)
+{
+  std::vector<Index> target_rows;
+  collapse_target_rows(level, target_rows);
+  analyse_level_values(level, target_rows, dim, v, details, corrections);
 }
 
 // The link condition of CGAL::Euler::does_satisfy_link_condition() (CGAL 5.5) for the

@@ -319,10 +319,12 @@ double denoise(Pyramid<TriangleMesh>& pyr, const NamedParameters& np = parameter
   std::vector<unsigned char> is_odd;
   internal::odd_row_flags(finest, is_odd);
   const double factor = internal::residual_noise_factor(finest.weights);   // the weights do not change
+  std::vector<internal::Index> target_rows;
+  internal::collapse_target_rows(finest, target_rows);
   double first_threshold = -1.;
   for(unsigned int step = 0; step < 2 * passes; ++step)
   {
-    internal::analyse_level_values(finest, dim, x, d, corrections);
+    internal::analyse_level_values(finest, target_rows, dim, x, d, corrections);
     if(c == 0)
       internal::smoothed_vertex_normals(finest.weights, x, F, normals);
     const double t = universal * internal::noise_of_finest_details(finest.weights, factor, d, dim, c == 0 ? &normals : nullptr);
@@ -333,7 +335,7 @@ double denoise(Pyramid<TriangleMesh>& pyr, const NamedParameters& np = parameter
     for(std::size_t i = 0; i < n0; ++i)
     {
       double* v = d.data() + i * dim;
-      std::copy(v, v + dim, shrunk.begin());
+      internal::copy_values(v, dim, shrunk.data());
       internal::soft_shrink(shrunk.data(), dim, t);
       for(std::size_t k = 0; k < dim; ++k)
         v[k] += gain * (shrunk[k] - v[k]);
