@@ -442,6 +442,7 @@ Pyramid<TriangleMesh> decompose(const TriangleMesh& tm, const NamedParameters& n
   // the face array of the current level, in input vertex numbers
   std::vector<Index> F;
   F.swap(im.triangles);
+  im = internal::Indexed_mesh<TriangleMesh>();   // not needed any more
 
   std::vector<unsigned char> alive(n0, 1);
   std::vector<Index> row_of(n0, internal::invalid_index);
