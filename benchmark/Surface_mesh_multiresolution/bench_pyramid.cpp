@@ -2,8 +2,8 @@
 // Pyramid decomposition and reconstruction next to the simplifiers of CGAL (SMS
 // edge_collapse with Garland-Heckbert plane policies), OpenMesh (Decimater with the
 // Quadric and IndependentSets modules) and meshoptimizer (meshopt_simplify), each run to the
-// coarsest vertex count of the pyramid. Every step runs in a child process of its own
-// (fork), so that its time and its peak memory are its own.
+// coarsest vertex count of the pyramid. Every step is timed in this process (see timed());
+// the memory of the decomposition is measured in a fresh process of this program.
 //
 // Usage: bench_pyramid [mesh files...]   (default: CGAL data meshes)
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -30,7 +30,6 @@
 #endif
 
 #include <sys/resource.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <cstdio>
@@ -78,44 +77,27 @@ double rss_mib()
   return resident * double(sysconf(_SC_PAGESIZE)) / (1024. * 1024.);
 }
 
-struct Measure { double seconds = -1, peak_extra_mib = -1; long result = -1; };
+struct Measure { double seconds = -1; long result = -1; };
 
-// runs f in a child process: its time (best of up to 3 runs, see below), the growth of its peak RSS over the RSS at the fork,
-// and the number it returns (a vertex count)
-Measure in_child(const std::function<long()>& f)
+// runs f in this process: its time and the number it returns (a vertex count). Best of up to
+// 3 runs, repeated while the runs so far took less than 3 s: the same rule for every system
+// (short runs on this virtual machine vary by up to 2x). Timings were taken in forked child
+// processes before; there the first write to every heap page inherited from the parent is a
+// copy-on-write fault, which slowed write-heavy steps (reconstruction: +70 %) far more than
+// anything a user's process sees. Memory is measured in a fresh process (memory_mode()).
+Measure timed(const std::function<long()>& f)
 {
-  int fd[2];
-  if(pipe(fd) != 0) return Measure();
-  const pid_t pid = fork();
-  if(pid == 0)
-  {
-    close(fd[0]);
-    const double base = rss_mib();
-    // best of up to 3 runs, repeated while the runs so far took less than 3 s: the same rule
-    // for every system (short runs on this virtual machine vary by up to 2x)
-    Measure m;
-    double total = 0.;
-    for(int run = 0; run < 3 && total < 3.; ++run)
-    {
-      CGAL::Real_timer t;
-      t.start();
-      m.result = f();
-      const double s = t.time();
-      total += s;
-      m.seconds = (run == 0) ? s : (std::min)(m.seconds, s);
-    }
-    rusage u;
-    getrusage(RUSAGE_SELF, &u);
-    m.peak_extra_mib = u.ru_maxrss / 1024. - base;
-    if(write(fd[1], &m, sizeof m) != sizeof m) _exit(1);
-    _exit(0);
-  }
-  close(fd[1]);
   Measure m;
-  if(read(fd[0], &m, sizeof m) != sizeof m) m = Measure();
-  close(fd[0]);
-  int status;
-  waitpid(pid, &status, 0);
+  double total = 0.;
+  for(int run = 0; run < 3 && total < 3.; ++run)
+  {
+    CGAL::Real_timer t;
+    t.start();
+    m.result = f();
+    const double s = t.time();
+    total += s;
+    m.seconds = (run == 0) ? s : (std::min)(m.seconds, s);
+  }
   return m;
 }
 
@@ -224,16 +206,16 @@ int main(int argc, char** argv)
     // the pyramid (kept in the parent too, for the reconstruction and the target count)
     const SMR::Pyramid<Mesh> pyr = SMR::decompose(mesh, SMR::parameters::minimum_number_of_vertices(std::size_t(n / 100)));
     const long target = long(pyr.number_of_vertices(pyr.number_of_levels()));
-    const Measure dec = in_child([&] {
+    const Measure dec = timed([&] {
       const auto p = SMR::decompose(mesh, SMR::parameters::minimum_number_of_vertices(std::size_t(n / 100)));
       return long(p.number_of_vertices(p.number_of_levels()));
     });
-    const Measure rec = in_child([&] { Mesh out; SMR::reconstruct(pyr, out); return long(out.number_of_vertices()); });
+    const Measure rec = timed([&] { Mesh out; SMR::reconstruct(pyr, out); return long(out.number_of_vertices()); });
     // re-filtering: new gains on D_2..D_4 and a values-only reconstruction into the mesh of an
     // earlier reconstruction (keep_connectivity), ten times
     Mesh previous;
     SMR::reconstruct(pyr, previous);
-    const Measure refilter = in_child([&] {
+    const Measure refilter = timed([&] {
       SMR::Pyramid<Mesh> p = pyr;   // (copied outside the loop: filtering is in place)
       CGAL::Real_timer t;
       t.start();
@@ -245,7 +227,7 @@ int main(int argc, char** argv)
       }
       return long(1e6 * t.time() / 10);   // microseconds per re-filtering
     });
-    const Measure sms = in_child([&] {
+    const Measure sms = timed([&] {
       Mesh m = mesh;
       SMS::GarlandHeckbert_plane_policies<Mesh, K> gh(m);
       auto stop = [&m, target](const auto&, const auto&, std::size_t, std::size_t) { return long(m.number_of_vertices()) <= target; };
@@ -264,7 +246,7 @@ int main(int argc, char** argv)
         om.add_face(t);
       }
     }
-    const Measure omd = in_child([&] {
+    const Measure omd = timed([&] {
       OM_mesh m = om;
       OpenMesh::Decimater::DecimaterT<OM_mesh> decimater(m);
       OpenMesh::Decimater::ModQuadricT<OM_mesh>::Handle quadric;
@@ -289,7 +271,7 @@ int main(int argc, char** argv)
     for(auto v : mesh.vertices()) xyz.insert(xyz.end(), {float(mesh.point(v).x()), float(mesh.point(v).y()), float(mesh.point(v).z())});
     for(auto f : mesh.faces())
       for(auto v : CGAL::vertices_around_face(mesh.halfedge(f), mesh)) indices.push_back(v.idx());
-    const Measure mo = in_child([&] {
+    const Measure mo = timed([&] {
       // meshoptimizer targets an index count: faces ~ 2 x vertices on a closed mesh
       std::vector<unsigned int> out(indices.size());
       const std::size_t count = meshopt_simplify(out.data(), indices.data(), indices.size(), xyz.data(), xyz.size() / 3,
