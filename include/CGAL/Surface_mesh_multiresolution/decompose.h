@@ -150,10 +150,8 @@ inline bool does_collapse_flip_a_face(const Triangle_halfedges& th, Index h, con
     const double* pa = xyz + 3 * std::size_t(a);
     const double* pb = xyz + 3 * std::size_t(b);
     double before[3], after[3];
-    const double ua[3] = {pa[0] - po[0], pa[1] - po[1], pa[2] - po[2]}, ub[3] = {pb[0] - po[0], pb[1] - po[1], pb[2] - po[2]};
-    const double va[3] = {pa[0] - pe[0], pa[1] - pe[1], pa[2] - pe[2]}, vb[3] = {pb[0] - pe[0], pb[1] - pe[1], pb[2] - pe[2]};
-    before[0] = ua[1] * ub[2] - ua[2] * ub[1]; before[1] = ua[2] * ub[0] - ua[0] * ub[2]; before[2] = ua[0] * ub[1] - ua[1] * ub[0];
-    after[0] = va[1] * vb[2] - va[2] * vb[1]; after[1] = va[2] * vb[0] - va[0] * vb[2]; after[2] = va[0] * vb[1] - va[1] * vb[0];
+    cross_of_differences(pa, pb, po, before);
+    cross_of_differences(pa, pb, pe, after);
     if(!(before[0] * after[0] + before[1] * after[1] + before[2] * after[2] > 0))
       return true;
   }

@@ -9,6 +9,7 @@
 #define CGAL_SURFACE_MESH_MULTIRESOLUTION_INTERNAL_PLANE_QUADRICS_H
 
 #include <CGAL/Surface_mesh_multiresolution/internal/config.h>
+#include <CGAL/Surface_mesh_multiresolution/internal/indexed_mesh.h>
 #include <CGAL/Surface_mesh_multiresolution/internal/relaxation_weights.h>
 
 #include <cmath>
@@ -51,7 +52,7 @@ public:
       const double* q = point(th.target[h0 + 1]);
       const double* r = point(th.source[h0]);
       double n[3];
-      cross_difference(q, r, p, n);
+      cross_of_differences(q, r, p, n);
       normalize(n);
       double face_quadric[size];
       outer(n, p, face_quadric);
@@ -65,11 +66,9 @@ public:
         const double* eq = point(th.target[Triangle_halfedges::next_in_face(h)]);
         const double* er = point(th.source[h]);
         double fn[3], edge[3], en[3];
-        cross_difference(eq, er, ep, fn);
+        cross_of_differences(eq, er, ep, fn);
         for(int c = 0; c < 3; ++c) edge[c] = ep[c] - er[c];
-        en[0] = edge[1] * fn[2] - edge[2] * fn[1];
-        en[1] = edge[2] * fn[0] - edge[0] * fn[2];
-        en[2] = edge[0] * fn[1] - edge[1] * fn[0];
+        cross(edge, fn, en);
         normalize(en);
         double edge_quadric[size];
         outer(en, ep, edge_quadric);
@@ -132,16 +131,6 @@ public:
 
 private:
   const double* point(Index v) const { return m_xyz + 3 * std::size_t(v); }
-
-  // n = (q - p) x (r - p)
-  static void cross_difference(const double* q, const double* r, const double* p, double* n)
-  {
-    const double u[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]};
-    const double v[3] = {r[0] - p[0], r[1] - p[1], r[2] - p[2]};
-    n[0] = u[1] * v[2] - u[2] * v[1];
-    n[1] = u[2] * v[0] - u[0] * v[2];
-    n[2] = u[0] * v[1] - u[1] * v[0];
-  }
 
   // as CGAL: a zero vector stays zero (degenerate face: no plane, no quadric)
   static void normalize(double* n)

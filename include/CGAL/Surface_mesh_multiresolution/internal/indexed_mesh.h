@@ -28,6 +28,22 @@ namespace internal {
 
 constexpr Index invalid_index = (std::numeric_limits<Index>::max)();
 
+// out = a x b, for points and vectors stored as 3 doubles
+inline void cross(const double* a, const double* b, double* out)
+{
+  out[0] = a[1] * b[2] - a[2] * b[1];
+  out[1] = a[2] * b[0] - a[0] * b[2];
+  out[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+// out = (q - p) x (r - p): twice the area vector of the triangle (p, q, r)
+inline void cross_of_differences(const double* q, const double* r, const double* p, double* out)
+{
+  const double u[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]};
+  const double v[3] = {r[0] - p[0], r[1] - p[1], r[2] - p[2]};
+  cross(u, v, out);
+}
+
 // Copies the dim values of one vertex (or the 3 corners of one face). Why not std::copy: for
 // a few values per vertex it becomes a call to memmove per vertex, 6 % of a decomposition.
 template <typename T>

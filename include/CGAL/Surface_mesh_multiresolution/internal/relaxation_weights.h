@@ -209,8 +209,9 @@ inline bool second_order_difference_coefficients(const double* p1, const double*
   for(int c = 0; c < 3; ++c) { e[c] = p2[c] - p1[c]; u[c] = p3[c] - p1[c]; v[c] = p4[c] - p1[c]; }
   const double l2 = e[0] * e[0] + e[1] * e[1] + e[2] * e[2];
   auto cross_norm = [](const double* x, const double* y) {
-    const double cx = x[1] * y[2] - x[2] * y[1], cy = x[2] * y[0] - x[0] * y[2], cz = x[0] * y[1] - x[1] * y[0];
-    return std::sqrt(cx * cx + cy * cy + cz * cz);
+    double c[3];
+    cross(x, y, c);
+    return std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
   };
   const double A3 = cross_norm(e, u), A4 = cross_norm(e, v);   // L h3, L h4
   if(!(l2 > 0.) || !(A3 >= min_relative_height * l2) || !(A4 >= min_relative_height * l2))
