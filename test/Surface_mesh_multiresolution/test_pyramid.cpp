@@ -611,7 +611,7 @@ TEST_CASE("a vertex pinched between two fans survives decomposition and reconstr
 TEST_CASE("the candidates' radix sort orders by (cost, halfedge) like a comparison sort", "[pyramid][cost]")
 {
   CGAL::Random rng(8);
-  for(int trial = 0; trial < 4; ++trial)
+  for(int trial = 0; trial < 6; ++trial)
   {
     std::vector<double> cost_of(trial == 0 ? 1 : 20000);
     for(double& cost : cost_of)
@@ -623,23 +623,28 @@ TEST_CASE("the candidates' radix sort orders by (cost, halfedge) like a comparis
         case 2: cost = 1e-3 * rng.get_int(0, 5); break;                      // exact ties
         case 3: cost = -std::ldexp(rng.get_double(), rng.get_int(-60, 3)); break;
         case 4: cost = trial == 3 ? std::numeric_limits<double>::infinity() : 1.; break;
-        default: cost = std::ldexp(1. + 1e-9 * rng.get_int(0, 3), rng.get_int(-40, 10)); break;   // equal keys, different costs
+        default: cost = std::ldexp(1. + 1e-12 * rng.get_int(0, 3), rng.get_int(-40, 10)); break;   // equal keys, different costs
       }
     }
+    // the split of the key follows the number of halfedges: 15 halfedge bits here, 31 (and only
+    // 33 cost bits) when the level is declared to have 2^31 halfedges
+    const SMR::internal::Candidate_key key(trial >= 4 ? (std::size_t(1) << 31) : cost_of.size());
+    CHECK(key.halfedge_bits() == (trial >= 4 ? 31 : (trial == 0 ? 0 : 15)));
     std::vector<std::uint64_t> c;
     std::vector<SMR::internal::Index> expected;
     for(std::size_t i = 0; i < cost_of.size(); ++i)
     {
-      c.push_back((std::uint64_t(SMR::internal::cost_key(cost_of[i])) << 32) | i);
+      c.push_back(key(cost_of[i], static_cast<SMR::internal::Index>(i)));
+      REQUIRE(key.halfedge(c.back()) == i);
       expected.push_back(static_cast<SMR::internal::Index>(i));
     }
     std::sort(expected.begin(), expected.end(), [&](auto a, auto b) { return cost_of[a] < cost_of[b] || (cost_of[a] == cost_of[b] && a < b); });
     if(trial % 2 == 1)   // the input order does not matter
       std::shuffle(c.begin(), c.end(), std::mt19937(trial));
-    SMR::internal::sort_candidates(c, [&](SMR::internal::Index h) { return cost_of[h]; });
+    SMR::internal::sort_candidates(c, key, [&](SMR::internal::Index h) { return cost_of[h]; });
     REQUIRE(c.size() == expected.size());
     for(std::size_t i = 0; i < c.size(); ++i)
-      REQUIRE((c[i] & 0xffffffffu) == expected[i]);
+      REQUIRE(key.halfedge(c[i]) == expected[i]);
   }
 }
 

@@ -161,35 +161,57 @@ inline bool does_collapse_flip_a_face(const Triangle_halfedges& th, Index h, con
 // An accepted half-edge collapse o -> e, in the rows of its level.
 struct Collapse { Index o, e; };
 
-// The high 32 bits of the order-preserving integer image of a cost (sign, exponent and 20 bits
-// of mantissa): a < b implies cost_key(a) <= cost_key(b).
-inline std::uint32_t cost_key(double x)
+// A candidate collapse in 8 bytes: the leading `cost_bits` bits of the order-preserving
+// integer image of its cost (sign, exponent, mantissa), then its halfedge in the low
+// `halfedge_bits` bits, as few as the level's halfedge numbers need. With 40 cost bits (28 of
+// mantissa) two different costs rarely share a key; with the former fixed split (20 bits of
+// mantissa) 15 % of the dragon's candidates did, and ordering them by their recomputed costs
+// took 16 % of its decomposition. cost a < cost b implies cost_part(key(a)) <= cost_part(key(b)).
+class Candidate_key
 {
-  x += 0.;                                                // -0 -> +0: equal costs, equal keys
-  std::uint64_t b;
-  std::memcpy(&b, &x, sizeof b);
-  b = (b >> 63) ? ~b : (b | (std::uint64_t(1) << 63));
-  return static_cast<std::uint32_t>(b >> 32);
-}
+public:
+  explicit Candidate_key(std::size_t number_of_halfedges)
+  {
+    while(m_halfedge_bits < 32 && (std::uint64_t(1) << m_halfedge_bits) < number_of_halfedges)
+      ++m_halfedge_bits;
+    m_cost_bits = (std::min)(40, 64 - m_halfedge_bits);
+  }
+  std::uint64_t operator()(double cost, Index h) const
+  {
+    cost += 0.;                                             // -0 -> +0: equal costs, equal keys
+    std::uint64_t b;
+    std::memcpy(&b, &cost, sizeof b);
+    b = (b >> 63) ? ~b : (b | (std::uint64_t(1) << 63));
+    return ((b >> (64 - m_cost_bits)) << m_halfedge_bits) | h;
+  }
+  Index halfedge(std::uint64_t key) const { return static_cast<Index>(key & ((std::uint64_t(1) << m_halfedge_bits) - 1)); }
+  std::uint64_t cost_part(std::uint64_t key) const { return key >> m_halfedge_bits; }
+  int halfedge_bits() const { return m_halfedge_bits; }
+  int cost_bits() const { return m_cost_bits; }
 
-// Sorts candidates c[i] = cost_key(cost(h)) << 32 | h, given in any order, by increasing
-// cost, equal costs in increasing h; cost(h) gives the cost of halfedge h again (the same
-// double: it is a deterministic function). Why by hand: a comparison sort of the 6n candidates
-// was the largest part of the decomposition (16 % of the dragon's), and candidates holding
-// their costs took 16 bytes each. This is a stable LSD radix sort of 8-byte candidates on their
-// keys (3 passes of 11 bits, a pass skipped when all candidates share its digit), then a
-// comparison sort by the exact costs and h inside each run of equal keys (short), which makes
-// the order total whatever the input order. Sequential, hence deterministic.
+private:
+  int m_halfedge_bits = 0, m_cost_bits = 40;
+};
+
+// Sorts candidate keys (any input order) by increasing cost, equal costs in increasing
+// halfedge; cost(h) gives the cost of halfedge h again (the same double: it is a
+// deterministic function). Why by hand: a comparison sort of the 6n candidates was the largest
+// part of the decomposition (16 % of the dragon's), and candidates holding their costs took 16
+// bytes each. This is a stable LSD radix sort on the cost bits of the keys (passes of 10 bits,
+// a pass skipped when all candidates share its digit), then a comparison sort by the exact
+// costs and halfedges inside each run of equal cost bits (rare), which makes the order total
+// whatever the input order. Sequential, hence deterministic.
 template <typename CostOfHalfedge>
-void sort_candidates(std::vector<std::uint64_t>& c, const CostOfHalfedge& cost)
+void sort_candidates(std::vector<std::uint64_t>& c, const Candidate_key& key, const CostOfHalfedge& cost)
 {
   const std::size_t n = c.size();
-  constexpr int digits = 3, shift[digits] = {32, 43, 54};
-  constexpr std::uint64_t mask = (1u << 11) - 1;
-  std::vector<std::size_t> count(digits * (mask + 1), 0);
+  constexpr int digit_bits = 10;
+  constexpr std::uint64_t mask = (1u << digit_bits) - 1;
+  const int digits = (key.cost_bits() + digit_bits - 1) / digit_bits;
+  std::vector<std::size_t> count(std::size_t(digits) * (mask + 1), 0);
   for(const std::uint64_t x : c)
     for(int d = 0; d < digits; ++d)
-      ++count[d * (mask + 1) + ((x >> shift[d]) & mask)];
+      ++count[d * (mask + 1) + ((x >> (key.halfedge_bits() + d * digit_bits)) & mask)];
   std::vector<std::uint64_t> scratch(n);
   std::uint64_t* from = c.data();
   std::uint64_t* to = scratch.data();
@@ -200,8 +222,9 @@ void sort_candidates(std::vector<std::uint64_t>& c, const CostOfHalfedge& cost)
       continue;                                           // one digit for all: nothing to do
     std::size_t sum = 0;
     for(std::size_t b = 0; b <= mask; ++b) { const std::size_t t = pos[b]; pos[b] = sum; sum += t; }
+    const int shift = key.halfedge_bits() + d * digit_bits;
     for(std::size_t i = 0; i < n; ++i)
-      to[pos[(from[i] >> shift[d]) & mask]++] = from[i];
+      to[pos[(from[i] >> shift) & mask]++] = from[i];
     std::swap(from, to);
   }
   if(from != c.data())
@@ -211,19 +234,19 @@ void sort_candidates(std::vector<std::uint64_t>& c, const CostOfHalfedge& cost)
   for(std::size_t i = 0; i < n;)
   {
     std::size_t j = i + 1;
-    while(j < n && (c[j] >> 32) == (c[i] >> 32))
+    while(j < n && key.cost_part(c[j]) == key.cost_part(c[i]))
       ++j;
     if(j - i > 1)
     {
       run.clear();
       for(std::size_t q = i; q < j; ++q)
       {
-        const Index h = static_cast<Index>(c[q] & 0xffffffffu);
+        const Index h = key.halfedge(c[q]);
         run.emplace_back(cost(h), h);
       }
       std::sort(run.begin(), run.end());                  // (cost, h): equal costs keep increasing h
       for(std::size_t q = i; q < j; ++q)
-        c[q] = (c[q] & ~std::uint64_t(0xffffffffu)) | run[q - i].second;
+        c[q] = (key.cost_part(c[q]) << key.halfedge_bits()) | run[q - i].second;
     }
     i = j;
   }
@@ -257,7 +280,8 @@ void select_collapses(const Triangle_halfedges& th, const double* xyz, const Cos
   // keys in parallel (TBB), vertex by vertex (the quadric and position of o are read once
   // for its 1-ring, those of its neighbours are near in memory), each into its own slot;
   // refused collapses dropped
-  constexpr std::uint64_t refused = ~std::uint64_t(0);     // no halfedge has number 2^32 - 1
+  const Candidate_key key(nh);
+  constexpr std::uint64_t refused = ~std::uint64_t(0);     // no key: its cost bits would be a NaN's
   std::vector<std::uint64_t> candidates(nh);
   parallel_for_blocks(th.n, [&](std::size_t first, std::size_t last) {
     for(std::size_t o = first; o < last; ++o)
@@ -265,18 +289,18 @@ void select_collapses(const Triangle_halfedges& th, const double* xyz, const Cos
       {
         const Index h = th.out[k];
         const double c = cost_of_edge(h, static_cast<Index>(o), th.out_target[k]);
-        candidates[k] = std::isnan(c) ? refused : ((std::uint64_t(cost_key(c)) << 32) | h);
+        candidates[k] = std::isnan(c) ? refused : key(c, h);
       }
   }, 1024);
   candidates.erase(std::remove(candidates.begin(), candidates.end(), refused), candidates.end());
-  sort_candidates(candidates, cost_of);
+  sort_candidates(candidates, key, cost_of);
   locked.assign(th.n, 0);
   accepted.clear();
   for(const std::uint64_t candidate : candidates)
   {
     if(accepted.size() >= budget)
       break;
-    const Index h = static_cast<Index>(candidate & 0xffffffffu), o = th.source[h], e = th.target[h];
+    const Index h = key.halfedge(candidate), o = th.source[h], e = th.target[h];
     if(locked[o] || locked[e])
       continue;
     if(!satisfies_link_condition(th, h, on_border) || does_collapse_flip_a_face(th, h, xyz))
