@@ -692,7 +692,7 @@ TEST_CASE("the index-based link condition agrees with CGAL's on every edge", "[p
       const auto he = halfedge(im.vertices[th.source[h]], im.vertices[th.target[h]], m);
       REQUIRE(he.second);
       const bool expected = CGAL::Euler::does_satisfy_link_condition(edge(he.first, m), m);
-      CHECK(SMR::internal::satisfies_link_condition(th, h, on_border) == expected);
+      CHECK(SMR::internal::satisfies_link_condition(th, h, th.source[h], th.target[h], on_border) == expected);
       refused += expected ? 0 : 1;
       ++compared;
     }

@@ -96,27 +96,37 @@ inline void analyse_level_values(const Pyramid_level& level, std::size_t dim, co
 }
 
 // The link condition of CGAL::Euler::does_satisfy_link_condition() (CGAL 5.5) for the
-// collapse of the edge of halfedge h, on index arrays: every common neighbour of its ends is
-// the apex of a face on the edge; no face on the edge has its two other edges on the border
-// (isolated triangle); an interior edge joins no two border vertices, is not an edge of a
-// tetrahedron and does not close a two-face pillow.
-inline bool satisfies_link_condition(const Triangle_halfedges& th, Index h, const std::vector<unsigned char>& on_border)
+// collapse of the edge of halfedge h = o -> e, on index arrays: every common neighbour of its
+// ends is the apex of a face on the edge; no face on the edge has its two other edges on the
+// border (isolated triangle); an interior edge joins no two border vertices, is not an edge of
+// a tetrahedron and does not close a two-face pillow. Reads the 1-rings of o and e (contiguous)
+// and twin(h); other twins only for edges between border vertices.
+inline bool satisfies_link_condition(const Triangle_halfedges& th, Index h, Index o, Index e,
+                                     const std::vector<unsigned char>& on_border)
 {
   typedef Triangle_halfedges T;
-  const Index o = th.source[h], e = th.target[h], t = th.twin[h];
-  const bool top = th.has_face(h), bottom = th.has_face(t);
-  const Index apex_top = top ? th.opposite_vertex(h) : invalid_index;
-  const Index apex_bottom = bottom ? th.opposite_vertex(t) : invalid_index;
-  const Index* const o_first = th.out_target.data() + th.out_offsets[o];
-  const Index* const o_last = th.out_target.data() + th.out_offsets[o + 1];
-  const Index* const e_first = th.out_target.data() + th.out_offsets[e];
-  const Index* const e_last = th.out_target.data() + th.out_offsets[e + 1];
-  for(const Index* k = o_first; k != o_last; ++k)   // the 1-rings are short: a double loop beats any set
-    if(*k != e && *k != apex_top && *k != apex_bottom && std::find(e_first, e_last, *k) != e_last)
+  const Index t = th.twin[h];
+  const Index o_begin = th.out_offsets[o], o_end = th.out_offsets[o + 1];
+  const Index e_begin = th.out_offsets[e], e_end = th.out_offsets[e + 1];
+  Index apex_top = invalid_index, apex_bottom = invalid_index;     // invalid: no face on that side
+  for(Index k = o_begin; k != o_end; ++k)
+    if(th.out[k] == h) { apex_top = th.out_apex[k]; break; }
+  for(Index k = e_begin; k != e_end; ++k)
+    if(th.out[k] == t) { apex_bottom = th.out_apex[k]; break; }
+  const bool top = apex_top != invalid_index, bottom = apex_bottom != invalid_index;
+  const Index* const e_first = th.out_target.data() + e_begin;
+  const Index* const e_last = th.out_target.data() + e_end;
+  for(Index k = o_begin; k != o_end; ++k)                // the 1-rings are short: a double loop beats any set
+  {
+    const Index c = th.out_target[k];
+    if(c != e && c != apex_top && c != apex_bottom && std::find(e_first, e_last, c) != e_last)
       return false;
-  if(top && th.is_border_edge(T::next_in_face(h)) && th.is_border_edge(T::next_in_face(T::next_in_face(h))))
+  }
+  // a border edge joins two border vertices: the flags spare most twin lookups
+  auto border_edge = [&](Index g, Index from, Index to) { return on_border[from] && on_border[to] && th.is_border_edge(g); };
+  if(top && border_edge(T::next_in_face(h), e, apex_top) && border_edge(T::next_in_face(T::next_in_face(h)), apex_top, o))
     return false;
-  if(bottom && th.is_border_edge(T::next_in_face(t)) && th.is_border_edge(T::next_in_face(T::next_in_face(t))))
+  if(bottom && border_edge(T::next_in_face(t), o, apex_bottom) && border_edge(T::next_in_face(T::next_in_face(t)), apex_bottom, e))
     return false;
   if(top && bottom)
   {
@@ -124,7 +134,7 @@ inline bool satisfies_link_condition(const Triangle_halfedges& th, Index h, cons
       return false;
     // two interior vertices of valence 3 on an interior edge: a closed tetrahedron (the 1-ring
     // of each is a triangle whose edges all carry two faces)
-    if(!on_border[o] && !on_border[e] && o_last - o_first == 3 && e_last - e_first == 3)
+    if(!on_border[o] && !on_border[e] && o_end - o_begin == 3 && e_end - e_begin == 3)
       return false;
     if(apex_top == apex_bottom)
       return false;
@@ -132,21 +142,17 @@ inline bool satisfies_link_condition(const Triangle_halfedges& th, Index h, cons
   return true;
 }
 
-// Whether moving source(h) onto target(h) turns a face around (or makes it degenerate):
-// the faces at source(h) that survive must keep the orientation of their normal.
-inline bool does_collapse_flip_a_face(const Triangle_halfedges& th, Index h, const double* xyz)
+// Whether moving o onto e (the ends of a halfedge) turns a face around (or makes it
+// degenerate): the faces at o that survive must keep the orientation of their normal.
+inline bool does_collapse_flip_a_face(const Triangle_halfedges& th, Index o, Index e, const double* xyz)
 {
-  const Index o = th.source[h], e = th.target[h];
   const double* po = xyz + 3 * std::size_t(o);
   const double* pe = xyz + 3 * std::size_t(e);
   for(Index k = th.out_offsets[o]; k < th.out_offsets[o + 1]; ++k)
   {
-    const Index g = th.out[k];                            // face (o, a, b)
-    if(!th.has_face(g))
-      continue;
-    const Index a = th.target[g], b = th.opposite_vertex(g);
-    if(a == e || b == e)
-      continue;                                           // this face disappears
+    const Index a = th.out_target[k], b = th.out_apex[k];  // face (o, a, b)
+    if(b == invalid_index || a == e || b == e)
+      continue;                                           // no face, or a face that disappears
     const double* pa = xyz + 3 * std::size_t(a);
     const double* pb = xyz + 3 * std::size_t(b);
     double before[3], after[3];
@@ -296,19 +302,68 @@ void select_collapses(const Triangle_halfedges& th, const double* xyz, const Cos
   sort_candidates(candidates, key, cost_of);
   locked.assign(th.n, 0);
   accepted.clear();
-  for(const std::uint64_t candidate : candidates)
+  // The candidates come in cost order, that is at random places of the level's arrays: on a
+  // mesh larger than the cache each test waits for a dozen misses. Why by hand: the loop keeps
+  // a window of the next candidates whose ends were free when first seen and prefetches, in
+  // steps, what their tests read (ring offsets and twin, then the rings, then o's neighbours'
+  // positions), so that these misses overlap with the decisions before them. The decisions are
+  // those of the plain loop: only cache hints are added, every candidate is checked again when
+  // its turn comes.
+  struct Pending { Index h, o, e; };
+  constexpr std::size_t window = 16, ring_step = window / 2, position_step = 3, gather_ahead = 32;
+  Pending pending[window];
+  std::size_t head = 0, count = 0, scan = 0;
+  const std::size_t nc = candidates.size();
+  auto prefetch_ring = [&](Index v) {
+    prefetch(th.out.data() + th.out_offsets[v]);
+    prefetch(th.out_target.data() + th.out_offsets[v]);
+    prefetch(th.out_apex.data() + th.out_offsets[v]);
+  };
+  while(accepted.size() < budget)
   {
-    if(accepted.size() >= budget)
+    // refill the window with candidates whose ends are free now
+    while(count < window && scan < nc)
+    {
+      if(scan + gather_ahead < nc)
+      {
+        const Index later = key.halfedge(candidates[scan + gather_ahead]);
+        prefetch(th.source.data() + later);
+        prefetch(th.target.data() + later);
+      }
+      const Index h = key.halfedge(candidates[scan++]), o = th.source[h], e = th.target[h];
+      if(locked[o] || locked[e])
+        continue;
+      pending[(head + count++) % window] = Pending{h, o, e};
+      prefetch(th.out_offsets.data() + o);
+      prefetch(th.out_offsets.data() + e);
+      prefetch(th.twin.data() + h);
+    }
+    if(count == 0)
       break;
-    const Index h = key.halfedge(candidate), o = th.source[h], e = th.target[h];
-    if(locked[o] || locked[e])
+    if(count > ring_step)
+    {
+      const Pending& p = pending[(head + ring_step) % window];
+      prefetch_ring(p.o);
+      prefetch_ring(p.e);
+    }
+    if(count > position_step)
+    {
+      const Pending& p = pending[(head + position_step) % window];
+      prefetch(xyz + 3 * std::size_t(p.o));
+      for(Index k = th.out_offsets[p.o]; k < th.out_offsets[p.o + 1]; ++k)
+        prefetch(xyz + 3 * std::size_t(th.out_target[k]));
+    }
+    const Pending c = pending[head];
+    head = (head + 1) % window;
+    --count;
+    if(locked[c.o] || locked[c.e])
       continue;
-    if(!satisfies_link_condition(th, h, on_border) || does_collapse_flip_a_face(th, h, xyz))
+    if(!satisfies_link_condition(th, c.h, c.o, c.e, on_border) || does_collapse_flip_a_face(th, c.o, c.e, xyz))
       continue;
-    locked[o] = 1;
-    for(Index k = th.out_offsets[o]; k < th.out_offsets[o + 1]; ++k)
+    locked[c.o] = 1;
+    for(Index k = th.out_offsets[c.o]; k < th.out_offsets[c.o + 1]; ++k)
       locked[th.out_target[k]] = 1;
-    accepted.push_back(Collapse{o, e});
+    accepted.push_back(Collapse{c.o, c.e});
   }
 }
 

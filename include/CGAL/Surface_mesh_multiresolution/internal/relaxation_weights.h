@@ -60,7 +60,11 @@ struct Triangle_halfedges
 {
   std::size_t n = 0, nf = 0;
   std::vector<Index> source, target, twin;     // per halfedge
-  std::vector<Index> out_offsets, out, out_target;
+  // outgoing halfedges of each vertex (face halfedges, then border ones): out[k] for
+  // out_offsets[v] <= k < out_offsets[v + 1], with their targets and the third vertex of their
+  // face (invalid_index for a border halfedge), so that a vertex's 1-ring and the faces around
+  // it are read from three contiguous ranges
+  std::vector<Index> out_offsets, out, out_target, out_apex;
 
   static Index next_in_face(Index h) { return h % 3 == 2 ? h - 2 : h + 1; }
   bool has_face(Index h) const { return h < 3 * nf; }
@@ -84,6 +88,7 @@ struct Triangle_halfedges
       out_offsets[i + 1] += out_offsets[i];
     out.resize(h0);
     out_target.resize(h0);
+    out_apex.resize(h0);
     {
       std::vector<Index> fill(out_offsets.begin(), out_offsets.end() - 1);
       for(Index h = 0; h < h0; ++h)
@@ -91,6 +96,7 @@ struct Triangle_halfedges
         const Index k = fill[tri[h]]++;
         out[k] = h;
         out_target[k] = tri[next_in_face(h)];
+        out_apex[k] = tri[next_in_face(next_in_face(h))];
       }
     }
     // twin of a -> b: b's outgoing halfedge towards a. Vertex by vertex (parallel), so that the
@@ -164,16 +170,19 @@ struct Triangle_halfedges
       extra[i + 1] += extra[i];
       out_offsets[i + 1] = face_off[i + 1] + extra[i + 1];
     }
-    std::vector<Index> face_out, face_out_target;
+    std::vector<Index> face_out, face_out_target, face_out_apex;
     face_out.swap(out);
     face_out_target.swap(out_target);
+    face_out_apex.swap(out_apex);
     out.resize(nh);
     out_target.resize(nh);
+    out_apex.assign(nh, invalid_index);
     std::vector<Index> fill(n);
     for(std::size_t i = 0; i < n; ++i)
     {
       std::copy(face_out.begin() + face_off[i], face_out.begin() + face_off[i + 1], out.begin() + out_offsets[i]);
       std::copy(face_out_target.begin() + face_off[i], face_out_target.begin() + face_off[i + 1], out_target.begin() + out_offsets[i]);
+      std::copy(face_out_apex.begin() + face_off[i], face_out_apex.begin() + face_off[i + 1], out_apex.begin() + out_offsets[i]);
       fill[i] = out_offsets[i] + (face_off[i + 1] - face_off[i]);
     }
     Index g = h0;
