@@ -518,7 +518,7 @@ TEST_CASE("the index-based plane quadrics give SMS's Garland-Heckbert cost, bord
     std::vector<double> xyz;
     SMR::internal::read_coordinates(im.vertices, get(CGAL::vertex_point, m), gt, xyz);
     SMR::internal::Triangle_halfedges th;
-    th.build(im.number_of_vertices(), im.triangles);
+    th.build(im.number_of_vertices(), im.triangles, true);
     SMR::internal::Plane_quadrics quadrics;
     quadrics.initialize(th, xyz);
     std::size_t checked = 0, border = 0;
@@ -682,7 +682,7 @@ TEST_CASE("the index-based link condition agrees with CGAL's on every edge", "[p
     SMR::internal::Indexed_mesh<Mesh> im;
     SMR::internal::build_indexed_mesh(m, get(CGAL::vertex_index, m), im);
     SMR::internal::Triangle_halfedges th;
-    th.build(im.number_of_vertices(), im.triangles);
+    th.build(im.number_of_vertices(), im.triangles, true);
     std::vector<unsigned char> on_border(th.n, 0);
     for(std::size_t h = 3 * th.nf; h < th.source.size(); ++h)
       on_border[th.source[h]] = on_border[th.target[h]] = 1;

@@ -62,15 +62,6 @@ inline void compute_details(const Sparse_weights& w, const Pyramid_level& level,
   }
 }
 
-// The rows (in M_k) of the vertices the odd vertices of `level` collapse into.
-inline void collapse_target_rows(const Pyramid_level& level, std::vector<Index>& target_rows)
-{
-  target_rows.resize(level.collapse_targets.size());
-  for(std::size_t q = 0; q < target_rows.size(); ++q)
-    target_rows[q] = static_cast<Index>(std::lower_bound(level.vertices.begin(), level.vertices.end(), level.collapse_targets[q])
-                                        - level.vertices.begin());
-}
-
 // The details and corrections of one channel on one level from its values on all input
 // vertices (global numbers): the analysis of compute_details() for a pyramid whose
 // connectivity and weights are already known (re-analysis after a change of the values).
@@ -553,7 +544,7 @@ Pyramid<TriangleMesh> decompose(const TriangleMesh& tm, const NamedParameters& n
     for(std::size_t r = 0; r < nk; ++r)
       internal::copy_values(values[0].data() + 3 * std::size_t(rows_to_vertices[r]), 3, xyz.data() + 3 * r);
     internal::Relaxation_weight_builder builder;
-    builder.set_connectivity(nk, tri_rows);
+    builder.set_connectivity(nk, tri_rows, true);   // with apexes: the selection's tests read them
     const internal::Triangle_halfedges& th = builder.connectivity();
     if(k == 0)
       cost_model.initialize(th, values[0]);   // on M_0, rows are the input's vertex numbers

@@ -151,45 +151,35 @@ void build_triangle_mesh(FaceGraph& out, std::size_t nv, const std::vector<Index
 }
 
 // The face array of M_k from the one of M_{k+1}: removed faces back at their places, odd
-// vertices back at their corners (vertex splits on arrays). G is scratch.
-inline void expand_faces(const Pyramid_level& lev, std::vector<Index>& F, std::vector<Index>& G)
+// vertices back at their corners (vertex splits on arrays). In place: merged from the end,
+// a kept face only moves towards the end.
+inline void expand_faces(const Pyramid_level& lev, std::vector<Index>& F)
 {
-  const std::size_t nf = F.size() / 3 + lev.removed_face_positions.size();
-  G.resize(3 * nf);
-  std::size_t from = 0, next_removed = 0;
-  for(std::size_t p = 0; p < nf; ++p)
+  std::size_t from = F.size() / 3, next_removed = lev.removed_face_positions.size();
+  const std::size_t nf = from + next_removed;
+  F.resize(3 * nf);
+  for(std::size_t p = nf; next_removed > 0 && p-- > 0; )
   {
-    if(next_removed < lev.removed_face_positions.size() && lev.removed_face_positions[next_removed] == p)
+    if(lev.removed_face_positions[next_removed - 1] == p)
     {
-      copy_values(lev.removed_faces.data() + 3 * next_removed, 3, G.data() + 3 * p);
-      ++next_removed;
+      --next_removed;
+      copy_values(lev.removed_faces.data() + 3 * next_removed, 3, F.data() + 3 * p);
     }
     else
-    {
-      copy_values(F.data() + 3 * from, 3, G.data() + 3 * p);
-      ++from;
-    }
+      copy_values(F.data() + 3 * --from, 3, F.data() + 3 * p);
   }
   for(std::size_t q = 0; q < lev.renamed_corners.size(); ++q)
-    G[lev.renamed_corners[q]] = lev.renamed_vertices[q];
-  F.swap(G);
+    F[lev.renamed_corners[q]] = lev.renamed_vertices[q];
 }
 
-// The values of one channel on M_k from those on M_{k+1}: Eq. 6 (odd vertices) then Eq. 7
-// (even vertices) with the level's weights, the given details and exactness corrections.
-// `v` holds the channel for all input vertices (global numbers); only M_k's entries change.
-inline void reconstruct_level_values(const Pyramid_level& lev, std::size_t dim, const std::vector<double>& d,
-                                     const std::vector<std::pair<Index, double> >& corrections,
-                                     const std::vector<unsigned char>& is_odd, std::vector<double>& v,
-                                     std::vector<double>& state, std::vector<double>& prediction)
+// Eq. 6 then Eq. 7 on the rows of M_k: `state` holds the even vertices' values of M_{k+1} and,
+// at each odd row, the value of its collapse target; on return, the values of M_k.
+inline void synthesize_level(const Pyramid_level& lev, std::size_t dim, const std::vector<double>& d,
+                             const std::vector<std::pair<Index, double> >& corrections,
+                             const std::vector<unsigned char>& is_odd, std::vector<double>& state,
+                             std::vector<double>& prediction)
 {
-  const std::size_t nk = lev.vertices.size();
-  state.resize(nk * dim);
-  prediction.resize(nk * dim);
-  for(std::size_t r = 0; r < nk; ++r)
-    copy_values(v.data() + std::size_t(lev.vertices[r]) * dim, dim, state.data() + r * dim);
-  for(std::size_t q = 0; q < lev.odd_rows.size(); ++q)   // an odd vertex starts from the value of its target
-    copy_values(v.data() + std::size_t(lev.collapse_targets[q]) * dim, dim, state.data() + std::size_t(lev.odd_rows[q]) * dim);
+  prediction.resize(state.size());
   // Eq. 6: odd vertices (corrected before the even vertices read them)
   lev.weights.apply_row_list(state.data(), prediction.data(), dim, lev.odd_rows.data(), lev.odd_rows.size());
   for(Index r : lev.odd_rows)
@@ -206,6 +196,23 @@ inline void reconstruct_level_values(const Pyramid_level& lev, std::size_t dim, 
   for(const auto& cr : corrections)
     if(!is_odd[cr.first / dim])
       state[cr.first] = state[cr.first] + cr.second;
+}
+
+// The values of one channel on M_k from those on M_{k+1} (Eq. 6 and 7 with the level's
+// weights, the given details and exactness corrections). `v` holds the channel for all input
+// vertices (global numbers); only M_k's entries change.
+inline void reconstruct_level_values(const Pyramid_level& lev, std::size_t dim, const std::vector<double>& d,
+                                     const std::vector<std::pair<Index, double> >& corrections,
+                                     const std::vector<unsigned char>& is_odd, std::vector<double>& v,
+                                     std::vector<double>& state, std::vector<double>& prediction)
+{
+  const std::size_t nk = lev.vertices.size();
+  state.resize(nk * dim);
+  for(std::size_t r = 0; r < nk; ++r)
+    copy_values(v.data() + std::size_t(lev.vertices[r]) * dim, dim, state.data() + r * dim);
+  for(std::size_t q = 0; q < lev.odd_rows.size(); ++q)   // an odd vertex starts from the value of its target
+    copy_values(v.data() + std::size_t(lev.collapse_targets[q]) * dim, dim, state.data() + std::size_t(lev.odd_rows[q]) * dim);
+  synthesize_level(lev, dim, d, corrections, is_odd, state, prediction);
   for(std::size_t r = 0; r < nk; ++r)
     copy_values(state.data() + r * dim, dim, v.data() + std::size_t(lev.vertices[r]) * dim);
 }
@@ -217,44 +224,52 @@ inline void odd_row_flags(const Pyramid_level& lev, std::vector<unsigned char>& 
     is_odd[r] = 1;
 }
 
-// The values of every channel and the face array of level `level`, rebuilt from the
-// coarsest mesh: vertex splits on the face array, then Eq. 6 and 7 per level.
-// With `faces` false, F is left empty and the vertex splits are not replayed (values only).
+// The values of every channel, in rows of M_level (values[c][r * dim] is the value of
+// pyr.vertices(level)[r]; at level 0 rows are the input's vertex numbers), and the face array
+// of M_level (global numbers), rebuilt from the coarsest mesh: vertex splits on the face array,
+// then Eq. 6 and 7 per level. Values stay in the rows of the current level: the j-th row of
+// M_{k+1} is the j-th even row of M_k. With `faces` false, F is left empty and the vertex
+// splits are not replayed (values only).
 template <typename TriangleMesh>
 void reconstruct_arrays(const Pyramid<TriangleMesh>& pyr, std::size_t level,
                         std::vector<std::vector<double> >& values, std::vector<Index>& F, bool faces = true)
 {
   const std::size_t nc = pyr.number_of_channels();
-  const std::size_t n0 = pyr.number_of_input_vertices();
-  values.assign(nc, std::vector<double>());
-  for(std::size_t c = 0; c < nc; ++c)
-  {
-    const std::size_t dim = pyr.dimensions()[c];
-    values[c].assign(n0 * dim, 0.);
-    const std::vector<Index>& cv = pyr.coarse_vertices();
-    for(std::size_t r = 0; r < cv.size(); ++r)
-      copy_values(pyr.coarse_values()[c].data() + r * dim, dim, values[c].data() + std::size_t(cv[r]) * dim);
-  }
+  values = pyr.coarse_values();
+  F.clear();
   if(faces)
+  {
+    F.reserve(3 * pyr.number_of_faces(level));
     F = pyr.coarse_faces();
-  else
-    F.clear();
-  std::vector<Index> G;
+  }
   std::vector<double> state, prediction;
   std::vector<unsigned char> is_odd;
+  std::vector<Index> target_rows;
   for(std::size_t k = pyr.number_of_levels(); k-- > level; )
   {
     const Pyramid_level& lev = pyr.levels()[k];
     if(faces)
-      expand_faces(lev, F, G);
+      expand_faces(lev, F);
     odd_row_flags(lev, is_odd);
+    collapse_target_rows(lev, target_rows);
     for(std::size_t c = 0; c < nc; ++c)
-      reconstruct_level_values(lev, pyr.dimensions()[c], lev.details[c], lev.corrections[c], is_odd, values[c], state, prediction);
+    {
+      const std::size_t dim = pyr.dimensions()[c];
+      std::vector<double>& v = values[c];
+      state.resize(lev.vertices.size() * dim);
+      for(std::size_t j = 0; j < lev.even_rows.size(); ++j)
+        copy_values(v.data() + j * dim, dim, state.data() + std::size_t(lev.even_rows[j]) * dim);
+      for(std::size_t q = 0; q < lev.odd_rows.size(); ++q)   // an odd vertex starts from the value of its target
+        copy_values(state.data() + std::size_t(target_rows[q]) * dim, dim, state.data() + std::size_t(lev.odd_rows[q]) * dim);
+      synthesize_level(lev, dim, lev.details[c], lev.corrections[c], is_odd, state, prediction);
+      v.swap(state);
+    }
   }
 }
 
-// Writes the vertices `verts` (global numbers, increasing) with their values and the faces
-// F (global numbers) into `out`, emptied first, with the channel maps of `np`. With
+// Writes the vertices `verts` (global numbers, increasing) with their values (values[c] in
+// rows of verts) and the faces F (global numbers) into `out`, emptied first, with the channel
+// maps of `np`. With
 // `keep_connectivity`, `out` already has these vertices (in the order of vertices(out)) and
 // these faces: only the positions and channel values are written.
 // \throws std::invalid_argument if the maps do not match the pyramid's channels, or if
@@ -302,36 +317,33 @@ void write_output_mesh(const Pyramid<TriangleMesh>& pyr, const std::vector<Index
     std::size_t r = 0;
     for(vertex_descriptor v : vertices(out))
     {
-      const Index g = verts[r++];
-      put(vpm, v, point(values[0][3 * g], values[0][3 * g + 1], values[0][3 * g + 2]));
+      put(vpm, v, point(values[0][3 * r], values[0][3 * r + 1], values[0][3 * r + 2]));
+      ++r;
       ordered.push_back(v);
     }
   }
   else
   {
     clear_keeping_properties(out, 0);
-    std::vector<Index> row_of(pyr.number_of_input_vertices(), invalid_index);
-    for(std::size_t r = 0; r < verts.size(); ++r)
-      row_of[verts[r]] = static_cast<Index>(r);
-    std::vector<Index> tri(F.size());
-    for(std::size_t i = 0; i < F.size(); ++i)
-      tri[i] = row_of[F[i]];
-    build_triangle_mesh(out, verts.size(), tri, ordered);
-    for(std::size_t r = 0; r < verts.size(); ++r)
+    if(verts.size() == pyr.number_of_input_vertices())
+      build_triangle_mesh(out, verts.size(), F, ordered);   // all vertices: rows are the global numbers
+    else
     {
-      const std::size_t g = verts[r];
-      put(vpm, ordered[r], point(values[0][3 * g], values[0][3 * g + 1], values[0][3 * g + 2]));
+      std::vector<Index> row_of(pyr.number_of_input_vertices(), invalid_index);
+      for(std::size_t r = 0; r < verts.size(); ++r)
+        row_of[verts[r]] = static_cast<Index>(r);
+      std::vector<Index> tri(F.size());
+      for(std::size_t i = 0; i < F.size(); ++i)
+        tri[i] = row_of[F[i]];
+      build_triangle_mesh(out, verts.size(), tri, ordered);
     }
+    for(std::size_t r = 0; r < verts.size(); ++r)
+      put(vpm, ordered[r], point(values[0][3 * r], values[0][3 * r + 1], values[0][3 * r + 2]));
   }
   // channels, written through the same traits as they were read
-  std::vector<double> buf;
   for_each_channel(maps, [&](const auto& map, auto c) {
     constexpr std::size_t dim = Channel_traits<std::decay_t<decltype(map)> >::dimension;
-    buf.resize(verts.size() * dim);
-    for(std::size_t r = 0; r < verts.size(); ++r)
-      std::copy(values[decltype(c)::value + 1].begin() + std::size_t(verts[r]) * dim,
-                values[decltype(c)::value + 1].begin() + (std::size_t(verts[r]) + 1) * dim, buf.begin() + r * dim);
-    write_channel(map, ordered, buf.data(), dim, 0);
+    write_channel(map, ordered, values[decltype(c)::value + 1].data(), dim, 0);
   });
 }
 

@@ -48,7 +48,7 @@ void build_adaptive_hierarchy(const Pyramid<TriangleMesh>& pyr, Adaptive_hierarc
   for(std::size_t k = K; k-- > 0; )
   {
     const Pyramid_level& lev = pyr.levels()[k];
-    expand_faces(lev, F, G);                                   // F is now M_k's face array
+    expand_faces(lev, F);                                      // F is now M_k's face array
     for(std::size_t q = 0; q < lev.odd_rows.size(); ++q)
     {
       const Index o = lev.vertices[lev.odd_rows[q]];
@@ -260,6 +260,13 @@ double reconstruct_adaptively(const Pyramid<TriangleMesh>& pyr, OutputMesh& out,
   std::vector<Index> verts;
   for(Index g = 0; g < keep.size(); ++g)
     if(keep[g]) verts.push_back(g);
+  for(std::size_t c = 0; c < values.size(); ++c)   // level 0's rows are the global numbers: keep those of verts
+  {
+    const std::size_t dim = pyr.dimensions()[c];
+    for(std::size_t r = 0; r < verts.size(); ++r)
+      internal::copy_values(values[c].data() + std::size_t(verts[r]) * dim, dim, values[c].data() + r * dim);
+    values[c].resize(verts.size() * dim);
+  }
   internal::write_output_mesh(pyr, verts, values, F, out, np);
   return threshold;
 }

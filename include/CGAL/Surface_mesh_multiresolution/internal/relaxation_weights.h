@@ -17,6 +17,7 @@
 #include <CGAL/assertions.h>
 
 #include <algorithm>
+#include <atomic>
 #include <array>
 #include <cmath>
 #include <stdexcept>
@@ -62,8 +63,8 @@ struct Triangle_halfedges
   std::vector<Index> source, target, twin;     // per halfedge
   // outgoing halfedges of each vertex (face halfedges, then border ones): out[k] for
   // out_offsets[v] <= k < out_offsets[v + 1], with their targets and the third vertex of their
-  // face (invalid_index for a border halfedge), so that a vertex's 1-ring and the faces around
-  // it are read from three contiguous ranges
+  // face (invalid_index for a border halfedge; only when built `with_apexes`), so that a
+  // vertex's 1-ring and the faces around it are read from three contiguous ranges
   std::vector<Index> out_offsets, out, out_target, out_apex;
 
   static Index next_in_face(Index h) { return h % 3 == 2 ? h - 2 : h + 1; }
@@ -73,7 +74,7 @@ struct Triangle_halfedges
   Index opposite_vertex(Index h) const { return target[next_in_face(h)]; }
 
   // \throws std::invalid_argument when the halfedges (up to 6 per face) cannot be numbered by Index
-  void build(std::size_t nv, const std::vector<Index>& tri)
+  void build(std::size_t nv, const std::vector<Index>& tri, bool with_apexes = false)
   {
     if(tri.size() / 3 >= std::size_t(invalid_index) / 6)
       throw std::invalid_argument("the mesh has too many faces (at most (2^32-1)/6 are supported)");
@@ -88,7 +89,7 @@ struct Triangle_halfedges
       out_offsets[i + 1] += out_offsets[i];
     out.resize(h0);
     out_target.resize(h0);
-    out_apex.resize(h0);
+    out_apex.resize(with_apexes ? h0 : 0);
     {
       std::vector<Index> fill(out_offsets.begin(), out_offsets.end() - 1);
       for(Index h = 0; h < h0; ++h)
@@ -96,35 +97,46 @@ struct Triangle_halfedges
         const Index k = fill[tri[h]]++;
         out[k] = h;
         out_target[k] = tri[next_in_face(h)];
-        out_apex[k] = tri[next_in_face(next_in_face(h))];
+        if(with_apexes)
+          out_apex[k] = tri[next_in_face(next_in_face(h))];
       }
     }
-    // twin of a -> b: b's outgoing halfedge towards a. Vertex by vertex (parallel), so that the
-    // 1-rings searched are those of the neighbours of consecutive vertices (near in memory for
-    // meshes whose vertex order has some locality); on a mesh where an edge would be matched
-    // twice (not possible for a valid halfedge mesh) the pairing is redone sequentially, first
-    // come first served.
-    twin.resize(h0);
+    // twin of a -> b: b's outgoing halfedge towards a. Each edge {a, b} is matched once, by its
+    // smaller end (vertex by vertex, in parallel: the 1-rings searched are those of the
+    // neighbours of consecutive vertices, near in memory for meshes whose vertex order has some
+    // locality), which writes both twins; no two blocks write the same twin. A directed edge
+    // listed twice (or a loop) makes the matching ambiguous (not possible for a valid halfedge
+    // mesh): then the pairing is redone sequentially, first come first served.
+    twin.assign(h0, invalid_index);
+    std::atomic<bool> ambiguous(false);
     parallel_for_blocks(n, [&](std::size_t first, std::size_t last) {
+      bool repeated = false;
       for(std::size_t a = first; a < last; ++a)
         for(Index k = out_offsets[a]; k < out_offsets[a + 1]; ++k)
         {
           const Index b = out_target[k];
-          Index t = invalid_index;
+          for(Index j = out_offsets[a]; j < k; ++j)
+            repeated = repeated || out_target[j] == b;
+          if(b <= a)
+          {
+            repeated = repeated || b == a;
+            continue;                                // matched from b (or a loop)
+          }
           for(Index q = out_offsets[b]; q < out_offsets[b + 1]; ++q)
-            if(out_target[q] == a) { t = out[q]; break; }
-          twin[out[k]] = t;
+            if(out_target[q] == a)
+            {
+              twin[out[k]] = out[q];
+              twin[out[q]] = out[k];
+              break;
+            }
         }
+      if(repeated)
+        ambiguous.store(true, std::memory_order_relaxed);
     }, 4096);
-    bool symmetric = true;
+    const bool symmetric = !ambiguous.load();
     std::size_t border_halfedges = 0;
-    for(Index h = 0; h < h0; ++h)
-    {
-      if(twin[h] == invalid_index)
-        ++border_halfedges;
-      else if(twin[twin[h]] != h)
-        symmetric = false;
-    }
+    if(symmetric)
+      border_halfedges = static_cast<std::size_t>(std::count(twin.begin(), twin.end(), invalid_index));
     if(!symmetric)
     {
       std::fill(twin.begin(), twin.end(), invalid_index);
@@ -176,13 +188,14 @@ struct Triangle_halfedges
     face_out_apex.swap(out_apex);
     out.resize(nh);
     out_target.resize(nh);
-    out_apex.assign(nh, invalid_index);
+    out_apex.assign(with_apexes ? nh : 0, invalid_index);
     std::vector<Index> fill(n);
     for(std::size_t i = 0; i < n; ++i)
     {
       std::copy(face_out.begin() + face_off[i], face_out.begin() + face_off[i + 1], out.begin() + out_offsets[i]);
       std::copy(face_out_target.begin() + face_off[i], face_out_target.begin() + face_off[i + 1], out_target.begin() + out_offsets[i]);
-      std::copy(face_out_apex.begin() + face_off[i], face_out_apex.begin() + face_off[i + 1], out_apex.begin() + out_offsets[i]);
+      if(with_apexes)
+        std::copy(face_out_apex.begin() + face_off[i], face_out_apex.begin() + face_off[i + 1], out_apex.begin() + out_offsets[i]);
       fill[i] = out_offsets[i] + (face_off[i + 1] - face_off[i]);
     }
     Index g = h0;
@@ -251,10 +264,10 @@ public:
   // an SOD row is used when the sum of the absolute values of its weights is at most this
   static constexpr double max_sod_absolute_sum = 4.;
 
-  void set_connectivity(std::size_t n, const std::vector<Index>& triangles)
+  void set_connectivity(std::size_t n, const std::vector<Index>& triangles, bool with_apexes = false)
   {
     m_triangles = &triangles;
-    m_mesh.build(n, triangles);
+    m_mesh.build(n, triangles, with_apexes);
   }
 
   // the halfedges of the last connectivity set
