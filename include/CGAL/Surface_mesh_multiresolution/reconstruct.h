@@ -244,14 +244,15 @@ void reconstruct_arrays(const Pyramid<TriangleMesh>& pyr, std::size_t level,
   }
   std::vector<double> state, prediction;
   std::vector<unsigned char> is_odd;
-  std::vector<Index> target_rows;
+  std::vector<Index> row_of(pyr.number_of_levels() > level ? pyr.number_of_input_vertices() : 0);
   for(std::size_t k = pyr.number_of_levels(); k-- > level; )
   {
     const Pyramid_level& lev = pyr.levels()[k];
     if(faces)
       expand_faces(lev, F);
     odd_row_flags(lev, is_odd);
-    collapse_target_rows(lev, target_rows);
+    for(std::size_t r = 0; r < lev.vertices.size(); ++r)      // rows of the collapse targets
+      row_of[lev.vertices[r]] = static_cast<Index>(r);
     for(std::size_t c = 0; c < nc; ++c)
     {
       const std::size_t dim = pyr.dimensions()[c];
@@ -260,7 +261,7 @@ void reconstruct_arrays(const Pyramid<TriangleMesh>& pyr, std::size_t level,
       for(std::size_t j = 0; j < lev.even_rows.size(); ++j)
         copy_values(v.data() + j * dim, dim, state.data() + std::size_t(lev.even_rows[j]) * dim);
       for(std::size_t q = 0; q < lev.odd_rows.size(); ++q)   // an odd vertex starts from the value of its target
-        copy_values(state.data() + std::size_t(target_rows[q]) * dim, dim, state.data() + std::size_t(lev.odd_rows[q]) * dim);
+        copy_values(state.data() + std::size_t(row_of[lev.collapse_targets[q]]) * dim, dim, state.data() + std::size_t(lev.odd_rows[q]) * dim);
       synthesize_level(lev, dim, lev.details[c], lev.corrections[c], is_odd, state, prediction);
       v.swap(state);
     }
