@@ -700,3 +700,144 @@ TEST_CASE("the index-based link condition agrees with CGAL's on every edge", "[p
     INFO("refused: " << refused);
   }
 }
+
+TEST_CASE("Triangle_halfedges pairs the halfedges of the mesh, also when a directed edge repeats", "[pyramid][link]")
+{
+  typedef SMR::internal::Index Index;
+  std::vector<Mesh> meshes;
+  meshes.push_back(smr_test::icosphere<Mesh>(2));
+  meshes.push_back(smr_test::planar_grid<Mesh>(7, 0.2));
+  {
+    Mesh two = smr_test::icosphere<Mesh>(1);                 // two components, one with a border
+    Mesh grid = smr_test::planar_grid<Mesh>(4, 0.1);
+    CGAL::copy_face_graph(grid, two);
+    meshes.push_back(two);
+  }
+  for(const Mesh& m : meshes)
+  {
+    SMR::internal::Indexed_mesh<Mesh> im;
+    SMR::internal::build_indexed_mesh(m, get(CGAL::vertex_index, m), im);
+    SMR::internal::Triangle_halfedges th;
+    th.build(im.number_of_vertices(), im.triangles, true);
+    CHECK(th.source.size() == halfedges(m).size());
+    std::size_t border = 0;
+    for(Index h = 0; h < th.source.size(); ++h)
+    {
+      REQUIRE(th.twin[h] != SMR::internal::invalid_index);
+      CHECK(th.twin[th.twin[h]] == h);
+      CHECK(th.source[th.twin[h]] == th.target[h]);
+      CHECK(th.target[th.twin[h]] == th.source[h]);
+      const auto he = halfedge(im.vertices[th.source[h]], im.vertices[th.target[h]], m);
+      REQUIRE(he.second);
+      CHECK(th.has_face(h) == !is_border(he.first, m));
+      border += th.has_face(h) ? 0 : 1;
+    }
+    CHECK(border == std::size_t(std::count_if(halfedges(m).begin(), halfedges(m).end(), [&](auto h) { return is_border(h, m); })));
+    // the 1-ring lists: targets and the third corner of each face
+    for(Index v = 0; v < th.n; ++v)
+      for(Index k = th.out_offsets[v]; k < th.out_offsets[v + 1]; ++k)
+      {
+        const Index h = th.out[k];
+        CHECK(th.source[h] == v);
+        CHECK(th.out_target[k] == th.target[h]);
+        CHECK(th.out_apex[k] == (th.has_face(h) ? th.opposite_vertex(h) : SMR::internal::invalid_index));
+      }
+  }
+  // a face array where 0 -> 1 is in two faces (not a halfedge mesh): the pairing falls back to
+  // first come first served and stays a pairing
+  const std::vector<Index> tri = {0, 1, 2, 1, 0, 3, 0, 1, 4};
+  SMR::internal::Triangle_halfedges th;
+  th.build(5, tri);
+  for(Index h = 0; h < th.source.size(); ++h)
+  {
+    REQUIRE(th.twin[h] != SMR::internal::invalid_index);
+    CHECK(th.twin[th.twin[h]] == h);
+    CHECK(th.source[th.twin[h]] == th.target[h]);
+  }
+  CHECK(th.twin[0] == 3);                                    // 0 -> 1 of the first face pairs with 1 -> 0
+  CHECK(!th.has_face(th.twin[6]));                           // the repeated 0 -> 1 gets a border twin
+}
+
+TEST_CASE("the look-ahead greedy selection takes the collapses of the plain greedy loop", "[pyramid][cost]")
+{
+  typedef SMR::internal::Index Index;
+  std::vector<Mesh> meshes;
+  meshes.push_back(smr_test::icosphere<Mesh>(4));
+  meshes.push_back(smr_test::planar_grid<Mesh>(40, 0.3));
+  CGAL::Random rng(5);
+  for(Mesh& m : meshes)
+    for(auto v : vertices(m))
+      m.point(v) = m.point(v) + Vector_3(rng.get_double(-.01, .01), rng.get_double(-.01, .01), rng.get_double(-.01, .01));
+  for(const Mesh& m : meshes)
+  {
+    SMR::internal::Indexed_mesh<Mesh> im;
+    SMR::internal::build_indexed_mesh(m, get(CGAL::vertex_index, m), im);
+    std::vector<double> xyz;
+    SMR::internal::read_coordinates(im.vertices, get(CGAL::vertex_point, m), smr_test::Kernel(), xyz);
+    SMR::internal::Triangle_halfedges th;
+    th.build(im.number_of_vertices(), im.triangles, true);
+    SMR::internal::Plane_quadrics quadrics;
+    quadrics.initialize(th, xyz);
+    auto cost = [&](Index o, Index e) { return quadrics.cost(o, e); };
+    for(const std::size_t budget : {std::size_t(-1), std::size_t(25)})
+    {
+      std::vector<unsigned char> on_border, locked;
+      std::vector<SMR::internal::Collapse> accepted;
+      SMR::internal::select_collapses(th, xyz.data(), cost, budget, on_border, locked, accepted);
+      // the reference: every admissible halfedge in (cost, halfedge) order, taken when both ends
+      // are free and the tests pass, its source's closed 1-ring then locked
+      std::vector<std::pair<double, Index> > order;
+      for(Index h = 0; h < th.source.size(); ++h)
+        if(!on_border[th.source[h]] || th.is_border_edge(h))
+          order.emplace_back(*cost(th.source[h], th.target[h]), h);
+      std::sort(order.begin(), order.end());
+      std::vector<unsigned char> taken(th.n, 0);
+      std::vector<SMR::internal::Collapse> expected;
+      for(const auto& c : order)
+      {
+        const Index h = c.second, o = th.source[h], e = th.target[h];
+        if(expected.size() >= budget || taken[o] || taken[e]
+           || !SMR::internal::satisfies_link_condition(th, h, o, e, on_border) || SMR::internal::does_collapse_flip_a_face(th, o, e, xyz.data()))
+          continue;
+        taken[o] = 1;
+        for(Index k = th.out_offsets[o]; k < th.out_offsets[o + 1]; ++k)
+          taken[th.out_target[k]] = 1;
+        expected.push_back(SMR::internal::Collapse{o, e});
+      }
+      REQUIRE(accepted.size() == expected.size());
+      if(budget == 25)
+        CHECK(accepted.size() == 25);
+      else
+        CHECK(accepted.size() > th.n / 10);
+      for(std::size_t i = 0; i < accepted.size(); ++i)
+      {
+        CHECK(accepted[i].o == expected[i].o);
+        CHECK(accepted[i].e == expected[i].e);
+      }
+    }
+  }
+}
+
+TEST_CASE("collapse-target rows are found by galloping like a binary search", "[pyramid]")
+{
+  typedef SMR::internal::Index Index;
+  CGAL::Random rng(12);
+  SMR::internal::Pyramid_level level;
+  for(Index g = 0; g < 20000; ++g)
+    if(rng.get_int(0, 3) != 0)
+      level.vertices.push_back(g);
+  const std::size_t n = level.vertices.size();
+  for(std::size_t r = 0; r < n; r += 1 + std::size_t(rng.get_int(0, 5)))
+  {
+    level.odd_rows.push_back(static_cast<Index>(r));
+    // near (a neighbour in a coherent order), far, or at either end
+    const int kind = rng.get_int(0, 4);
+    const long t = kind == 0 ? long(r) + rng.get_int(-40, 41) : kind == 1 ? rng.get_int(0, int(n)) : kind == 2 ? 0 : long(n) - 1;
+    level.collapse_targets.push_back(level.vertices[std::size_t((std::max)(0L, (std::min)(long(n) - 1, t)))]);
+  }
+  std::vector<Index> rows;
+  SMR::internal::collapse_target_rows(level, rows);
+  REQUIRE(rows.size() == level.collapse_targets.size());
+  for(std::size_t q = 0; q < rows.size(); ++q)
+    CHECK(level.vertices[rows[q]] == level.collapse_targets[q]);
+}

@@ -104,8 +104,10 @@ void build_triangle_mesh(FaceGraph& out, std::size_t nv, const std::vector<Index
     pinched = (b != invalid_index);
     b = static_cast<Index>(g);
   }
-  for(std::size_t h = 0; h < nh && !pinched; ++h)
-    pinched = (th.twin[h] == invalid_index || th.twin[th.twin[h]] != h);
+#ifndef CGAL_NO_ASSERTIONS
+  for(std::size_t h = 0; h < nh; ++h)                // Triangle_halfedges pairs every halfedge
+    CGAL_assertion(th.twin[h] != invalid_index && th.twin[th.twin[h]] == h);
+#endif
   if(pinched)
   {
     vd.resize(nv);
