@@ -611,9 +611,10 @@ TEST_CASE("a vertex pinched between two fans survives decomposition and reconstr
 TEST_CASE("the candidates' radix sort orders by (cost, halfedge) like a comparison sort", "[pyramid][cost]")
 {
   CGAL::Random rng(8);
-  for(int trial = 0; trial < 6; ++trial)
+  for(int trial = 0; trial < 7; ++trial)
   {
-    std::vector<double> cost_of(trial == 0 ? 1 : 20000);
+    // trial 6: more candidates than one block of the parallel passes
+    std::vector<double> cost_of(trial == 0 ? 1 : trial == 6 ? 150000 : 20000);
     for(double& cost : cost_of)
     {
       switch(rng.get_int(0, 6))
@@ -628,8 +629,8 @@ TEST_CASE("the candidates' radix sort orders by (cost, halfedge) like a comparis
     }
     // the split of the key follows the number of halfedges: 15 halfedge bits here, 31 (and only
     // 33 cost bits) when the level is declared to have 2^31 halfedges
-    const SMR::internal::Candidate_key key(trial >= 4 ? (std::size_t(1) << 31) : cost_of.size());
-    CHECK(key.halfedge_bits() == (trial >= 4 ? 31 : (trial == 0 ? 0 : 15)));
+    const SMR::internal::Candidate_key key((trial == 4 || trial == 5) ? (std::size_t(1) << 31) : cost_of.size());
+    CHECK(key.halfedge_bits() == ((trial == 4 || trial == 5) ? 31 : (trial == 0 ? 0 : trial == 6 ? 18 : 15)));
     std::vector<std::uint64_t> c;
     std::vector<SMR::internal::Index> expected;
     for(std::size_t i = 0; i < cost_of.size(); ++i)
@@ -639,7 +640,7 @@ TEST_CASE("the candidates' radix sort orders by (cost, halfedge) like a comparis
       expected.push_back(static_cast<SMR::internal::Index>(i));
     }
     std::sort(expected.begin(), expected.end(), [&](auto a, auto b) { return cost_of[a] < cost_of[b] || (cost_of[a] == cost_of[b] && a < b); });
-    if(trial % 2 == 1)   // the input order does not matter
+    if(trial % 2 == 1 || trial == 6)   // the input order does not matter
       std::shuffle(c.begin(), c.end(), std::mt19937(trial));
     SMR::internal::sort_candidates(c, key, [&](SMR::internal::Index h) { return cost_of[h]; });
     REQUIRE(c.size() == expected.size());

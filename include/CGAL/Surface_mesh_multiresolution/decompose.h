@@ -197,31 +197,61 @@ private:
 // bytes each. This is a stable LSD radix sort on the cost bits of the keys (passes of 10 bits,
 // a pass skipped when all candidates share its digit), then a comparison sort by the exact
 // costs and halfedges inside each run of equal cost bits (rare), which makes the order total
-// whatever the input order. Sequential, hence deterministic.
+// whatever the input order. Deterministic: the same order for any number of threads.
 template <typename CostOfHalfedge>
 void sort_candidates(std::vector<std::uint64_t>& c, const Candidate_key& key, const CostOfHalfedge& cost)
 {
   const std::size_t n = c.size();
   constexpr int digit_bits = 10;
-  constexpr std::uint64_t mask = (1u << digit_bits) - 1;
+  constexpr std::size_t buckets = std::size_t(1) << digit_bits;
+  constexpr std::uint64_t mask = buckets - 1;
   const int digits = (key.cost_bits() + digit_bits - 1) / digit_bits;
-  std::vector<std::size_t> count(std::size_t(digits) * (mask + 1), 0);
-  for(const std::uint64_t x : c)
-    for(int d = 0; d < digits; ++d)
-      ++count[d * (mask + 1) + ((x >> (key.halfedge_bits() + d * digit_bits)) & mask)];
+  // each pass is a stable counting sort, split into fixed blocks of candidates: a block counts
+  // its digits, then writes its candidates after those of the smaller digits and of the same
+  // digit in the blocks before it. A stable sort has one result, whatever the blocks and threads.
+  constexpr std::size_t block = std::size_t(1) << 16;
+  const std::size_t blocks = (n + block - 1) / block;
+  std::vector<std::size_t> count(blocks * buckets);
   std::vector<std::uint64_t> scratch(n);
   std::uint64_t* from = c.data();
   std::uint64_t* to = scratch.data();
   for(int d = 0; d < digits; ++d)
   {
-    std::size_t* pos = count.data() + d * (mask + 1);
-    if(std::find(pos, pos + mask + 1, n) != pos + mask + 1)
-      continue;                                           // one digit for all: nothing to do
-    std::size_t sum = 0;
-    for(std::size_t b = 0; b <= mask; ++b) { const std::size_t t = pos[b]; pos[b] = sum; sum += t; }
     const int shift = key.halfedge_bits() + d * digit_bits;
-    for(std::size_t i = 0; i < n; ++i)
-      to[pos[(from[i] >> shift) & mask]++] = from[i];
+    parallel_for_blocks(blocks, [&](std::size_t first, std::size_t last) {
+      for(std::size_t b = first; b < last; ++b)
+      {
+        std::size_t* hist = count.data() + b * buckets;
+        std::fill(hist, hist + buckets, std::size_t(0));
+        for(std::size_t i = b * block; i < (std::min)(n, (b + 1) * block); ++i)
+          ++hist[(from[i] >> shift) & mask];
+      }
+    }, 1);
+    std::size_t sum = 0;
+    bool one_digit = false;
+    for(std::size_t v = 0; v < buckets && !one_digit; ++v)
+    {
+      std::size_t total = 0;
+      for(std::size_t b = 0; b < blocks; ++b)
+        total += count[b * buckets + v];
+      one_digit = (total == n);
+      for(std::size_t b = 0; b < blocks; ++b)
+      {
+        const std::size_t t = count[b * buckets + v];
+        count[b * buckets + v] = sum;
+        sum += t;
+      }
+    }
+    if(one_digit)
+      continue;                                           // one digit for all: nothing to do
+    parallel_for_blocks(blocks, [&](std::size_t first, std::size_t last) {
+      for(std::size_t b = first; b < last; ++b)
+      {
+        std::size_t* pos = count.data() + b * buckets;
+        for(std::size_t i = b * block; i < (std::min)(n, (b + 1) * block); ++i)
+          to[pos[(from[i] >> shift) & mask]++] = from[i];
+      }
+    }, 1);
     std::swap(from, to);
   }
   if(from != c.data())
@@ -526,14 +556,15 @@ Pyramid<TriangleMesh> decompose(const TriangleMesh& tm, const NamedParameters& n
     visitor.on_level_started(k, live);
 
     // ---- M_k on index arrays: rows (its vertices in increasing input number), faces in rows, positions
-    rows_to_vertices.clear();
-    for(Index g = 0; g < n0; ++g)
-      if(alive[g])
-      {
-        row_of[g] = static_cast<Index>(rows_to_vertices.size());
+    if(k == 0)
+      for(Index g = 0; g < n0; ++g)
         rows_to_vertices.push_back(g);
-      }
+    else                                          // M_k's vertices: M_{k-1}'s that are still alive (in order)
+      rows_to_vertices.erase(std::remove_if(rows_to_vertices.begin(), rows_to_vertices.end(), [&](Index g) { return !alive[g]; }),
+                             rows_to_vertices.end());
     const std::size_t nk = rows_to_vertices.size();
+    for(std::size_t r = 0; r < nk; ++r)
+      row_of[rows_to_vertices[r]] = static_cast<Index>(r);
     // the temporary arrays of a level live in its iteration: their memory follows the level's size
     std::vector<Index> tri_rows(F.size());
     internal::parallel_for_blocks(F.size(), [&](std::size_t first, std::size_t last) {
