@@ -27,6 +27,7 @@
 #include <cstdint>
 #include <cstring>
 #include <limits>
+#include <numeric>
 #include <tuple>
 #include <type_traits>
 #include <utility>
@@ -631,29 +632,54 @@ Pyramid<TriangleMesh> decompose(const TriangleMesh& tm, const NamedParameters& n
     }
 
     // ---- collapse on the face array, recording how to undo it. The faces of two accepted
-    // collapses are disjoint (no face holds two odd vertices), so they are rewritten in place.
-    removed.clear();
-    for(const internal::Collapse& c : accepted)
-    {
-      const Index o = rows_to_vertices[c.o], e = rows_to_vertices[c.e];
-      for(Index q = th.out_offsets[c.o]; q < th.out_offsets[c.o + 1]; ++q)
+    // collapses are disjoint (no face holds two odd vertices), so they are rewritten in place,
+    // in parallel: each collapse counts its removed and renamed faces, then writes its records
+    // at its place in the order of `accepted` (the records of a sequential loop).
+    const std::size_t na = accepted.size();
+    std::vector<Index> first_renamed(na + 1, 0), first_removed(na + 1, 0);
+    auto holds_target = [&](Index q, Index e_row) { return th.out_target[q] == e_row || th.out_apex[q] == e_row; };
+    internal::parallel_for_blocks(na, [&](std::size_t first, std::size_t last) {
+      for(std::size_t i = first; i < last; ++i)
       {
-        const Index g = th.out[q];                        // o -> a in face g / 3, o at corner g % 3
-        if(!th.has_face(g))
-          continue;
-        const Index p = g / 3;
-        Index* t = F.data() + 3 * std::size_t(p);
-        if(t[0] == e || t[1] == e || t[2] == e)
-          removed.push_back(std::make_pair(p, std::array<Index, 3>{{t[0], t[1], t[2]}}));
-        else
+        const internal::Collapse& c = accepted[i];
+        for(Index q = th.out_offsets[c.o]; q < th.out_offsets[c.o + 1]; ++q)
+          if(th.out_apex[q] != internal::invalid_index)    // a face (o, a, b)
+            ++(holds_target(q, c.e) ? first_removed : first_renamed)[i + 1];
+      }
+    }, 1024);
+    std::partial_sum(first_renamed.begin(), first_renamed.end(), first_renamed.begin());
+    std::partial_sum(first_removed.begin(), first_removed.end(), first_removed.begin());
+    removed.resize(first_removed[na]);
+    level.renamed_corners.resize(first_renamed[na]);
+    level.renamed_vertices.resize(first_renamed[na]);
+    internal::parallel_for_blocks(na, [&](std::size_t first, std::size_t last) {
+      for(std::size_t i = first; i < last; ++i)
+      {
+        const internal::Collapse& c = accepted[i];
+        const Index o = rows_to_vertices[c.o], e = rows_to_vertices[c.e];
+        Index renamed = first_renamed[i], gone = first_removed[i];
+        for(Index q = th.out_offsets[c.o]; q < th.out_offsets[c.o + 1]; ++q)
         {
-          level.renamed_corners.push_back(g);
-          level.renamed_vertices.push_back(o);
-          t[g % 3] = e;
+          const Index g = th.out[q];                      // o -> a in face g / 3, o at corner g % 3
+          if(!th.has_face(g))
+            continue;
+          const Index p = g / 3;
+          Index* t = F.data() + 3 * std::size_t(p);
+          if(holds_target(q, c.e))
+            removed[gone++] = std::make_pair(p, std::array<Index, 3>{{t[0], t[1], t[2]}});
+          else
+          {
+            level.renamed_corners[renamed] = g;
+            level.renamed_vertices[renamed++] = o;
+            t[g % 3] = e;
+          }
         }
       }
+    }, 1024);
+    for(const internal::Collapse& c : accepted)
+    {
       cost_model.collapse(c.o, c.e);
-      alive[o] = 0;
+      alive[rows_to_vertices[c.o]] = 0;
       --live;
     }
     cost_model.end_level(alive);
