@@ -232,26 +232,33 @@ inline void odd_row_flags(const Pyramid_level& lev, std::vector<unsigned char>& 
 // then Eq. 6 and 7 per level. Values stay in the rows of the current level: the j-th row of
 // M_{k+1} is the j-th even row of M_k. With `faces` false, F is left empty and the vertex
 // splits are not replayed (values only).
+// The face array of M_level (global numbers): the vertex splits replayed from the coarsest mesh.
+template <typename TriangleMesh>
+void reconstruct_faces(const Pyramid<TriangleMesh>& pyr, std::size_t level, std::vector<Index>& F)
+{
+  F.clear();
+  F.reserve(3 * pyr.number_of_faces(level));
+  F = pyr.coarse_faces();
+  for(std::size_t k = pyr.number_of_levels(); k-- > level; )
+    expand_faces(pyr.levels()[k], F);
+}
+
 template <typename TriangleMesh>
 void reconstruct_arrays(const Pyramid<TriangleMesh>& pyr, std::size_t level,
                         std::vector<std::vector<double> >& values, std::vector<Index>& F, bool faces = true)
 {
   const std::size_t nc = pyr.number_of_channels();
   values = pyr.coarse_values();
-  F.clear();
   if(faces)
-  {
-    F.reserve(3 * pyr.number_of_faces(level));
-    F = pyr.coarse_faces();
-  }
+    reconstruct_faces(pyr, level, F);
+  else
+    F.clear();
   std::vector<double> state, prediction;
   std::vector<unsigned char> is_odd;
   std::vector<Index> row_of(pyr.number_of_levels() > level ? pyr.number_of_input_vertices() : 0);
   for(std::size_t k = pyr.number_of_levels(); k-- > level; )
   {
     const Pyramid_level& lev = pyr.levels()[k];
-    if(faces)
-      expand_faces(lev, F);
     odd_row_flags(lev, is_odd);
     for(std::size_t r = 0; r < lev.vertices.size(); ++r)      // rows of the collapse targets
       row_of[lev.vertices[r]] = static_cast<Index>(r);
@@ -270,16 +277,18 @@ void reconstruct_arrays(const Pyramid<TriangleMesh>& pyr, std::size_t level,
   }
 }
 
-// Writes the vertices `verts` (global numbers, increasing) with their values (values[c] in
-// rows of verts) and the faces F (global numbers) into `out`, emptied first, with the channel
-// maps of `np`. With
-// `keep_connectivity`, `out` already has these vertices (in the order of vertices(out)) and
-// these faces: only the positions and channel values are written.
+// Writes the vertices `verts` (global numbers, increasing) with their values and the faces
+// into `out`, emptied first, with the channel maps of `np`. compute_faces(F) gives the faces
+// (global numbers), compute_values(values) the values of every channel in rows of verts
+// (values[c][r * dim] is the value of verts[r]); the output's connectivity and the values are
+// computed at the same time (with TBB), they are independent. With `keep_connectivity`,
+// `out` already has these vertices (in the order of vertices(out)) and these faces: only the
+// positions and channel values are written.
 // \throws std::invalid_argument if the maps do not match the pyramid's channels, or if
 // `keep_connectivity` is asked and `out` does not have the level's numbers of elements
-template <typename TriangleMesh, typename OutputMesh, typename NamedParameters>
+template <typename TriangleMesh, typename OutputMesh, typename NamedParameters, typename ComputeFaces, typename ComputeValues>
 void write_output_mesh(const Pyramid<TriangleMesh>& pyr, const std::vector<Index>& verts,
-                       const std::vector<std::vector<double> >& values, const std::vector<Index>& F,
+                       const ComputeFaces& compute_faces, const ComputeValues& compute_values,
                        OutputMesh& out, const NamedParameters& np, bool keep_connectivity = false, std::size_t number_of_faces = 0)
 {
   using parameters::choose_parameter;
@@ -310,6 +319,7 @@ void write_output_mesh(const Pyramid<TriangleMesh>& pyr, const std::vector<Index
 
   std::vector<vertex_descriptor> ordered;
   ordered.reserve(verts.size());
+  std::vector<std::vector<double> > values;
   const auto point = gt.construct_point_3_object();
   if(keep_connectivity)
   {
@@ -317,32 +327,29 @@ void write_output_mesh(const Pyramid<TriangleMesh>& pyr, const std::vector<Index
       throw std::invalid_argument("reconstruct: keep_connectivity asked, but the output mesh has " + std::to_string(num_vertices(out))
                                   + " vertices and " + std::to_string(num_faces(out)) + " faces, the level has "
                                   + std::to_string(verts.size()) + " and " + std::to_string(number_of_faces));
-    std::size_t r = 0;
     for(vertex_descriptor v : vertices(out))
-    {
-      put(vpm, v, point(values[0][3 * r], values[0][3 * r + 1], values[0][3 * r + 2]));
-      ++r;
       ordered.push_back(v);
-    }
+    compute_values(values);
   }
   else
-  {
-    clear_keeping_properties(out, 0);
-    if(verts.size() == pyr.number_of_input_vertices())
-      build_triangle_mesh(out, verts.size(), F, ordered);   // all vertices: rows are the global numbers
-    else
-    {
-      std::vector<Index> row_of(pyr.number_of_input_vertices(), invalid_index);
-      for(std::size_t r = 0; r < verts.size(); ++r)
-        row_of[verts[r]] = static_cast<Index>(r);
-      std::vector<Index> tri(F.size());
-      for(std::size_t i = 0; i < F.size(); ++i)
-        tri[i] = row_of[F[i]];
-      build_triangle_mesh(out, verts.size(), tri, ordered);
-    }
-    for(std::size_t r = 0; r < verts.size(); ++r)
-      put(vpm, ordered[r], point(values[0][3 * r], values[0][3 * r + 1], values[0][3 * r + 2]));
-  }
+    parallel_invoke([&] {
+      std::vector<Index> F;
+      compute_faces(F);
+      clear_keeping_properties(out, 0);
+      if(verts.size() == pyr.number_of_input_vertices())
+        build_triangle_mesh(out, verts.size(), F, ordered);   // all vertices: rows are the global numbers
+      else
+      {
+        std::vector<Index> row_of(pyr.number_of_input_vertices(), invalid_index);
+        for(std::size_t r = 0; r < verts.size(); ++r)
+          row_of[verts[r]] = static_cast<Index>(r);
+        for(Index& g : F)
+          g = row_of[g];
+        build_triangle_mesh(out, verts.size(), F, ordered);
+      }
+    }, [&] { compute_values(values); });
+  for(std::size_t r = 0; r < verts.size(); ++r)
+    put(vpm, ordered[r], point(values[0][3 * r], values[0][3 * r + 1], values[0][3 * r + 2]));
   // channels, written through the same traits as they were read
   for_each_channel(maps, [&](const auto& map, auto c) {
     constexpr std::size_t dim = Channel_traits<std::decay_t<decltype(map)> >::dimension;
@@ -411,11 +418,13 @@ void reconstruct(const Pyramid<TriangleMesh>& pyr, OutputMesh& out, const NamedP
     throw std::invalid_argument("reconstruct: level " + std::to_string(level) + " does not exist (the pyramid has levels 0 to "
                                 + std::to_string(pyr.number_of_levels()) + ")");
   const bool keep_connectivity = choose_parameter(get_parameter(np, internal_np::keep_connectivity), false);
-  std::vector<std::vector<double> > values;
-  std::vector<internal::Index> F;
-  internal::reconstruct_arrays(pyr, level, values, F, !keep_connectivity);
-  internal::write_output_mesh(pyr, pyr.vertices(level), values, F, out, np, keep_connectivity,
-                              keep_connectivity ? pyr.number_of_faces(level) : 0);
+  internal::write_output_mesh(pyr, pyr.vertices(level),
+                              [&](std::vector<internal::Index>& F) { internal::reconstruct_faces(pyr, level, F); },
+                              [&](std::vector<std::vector<double> >& values) {
+                                std::vector<internal::Index> no_faces;
+                                internal::reconstruct_arrays(pyr, level, values, no_faces, false);
+                              },
+                              out, np, keep_connectivity, keep_connectivity ? pyr.number_of_faces(level) : 0);
 }
 
 } // namespace Surface_mesh_multiresolution

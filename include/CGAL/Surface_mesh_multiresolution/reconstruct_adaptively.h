@@ -254,20 +254,22 @@ double reconstruct_adaptively(const Pyramid<TriangleMesh>& pyr, OutputMesh& out,
   }
 
   // exact values of the kept vertices: those of the full reconstruction
-  std::vector<std::vector<double> > values;
-  std::vector<Index> no_faces;
-  internal::reconstruct_arrays(pyr, 0, values, no_faces, false);   // values only: the faces are built above
   std::vector<Index> verts;
   for(Index g = 0; g < keep.size(); ++g)
     if(keep[g]) verts.push_back(g);
-  for(std::size_t c = 0; c < values.size(); ++c)   // level 0's rows are the global numbers: keep those of verts
-  {
-    const std::size_t dim = pyr.dimensions()[c];
-    for(std::size_t r = 0; r < verts.size(); ++r)
-      internal::copy_values(values[c].data() + std::size_t(verts[r]) * dim, dim, values[c].data() + r * dim);
-    values[c].resize(verts.size() * dim);
-  }
-  internal::write_output_mesh(pyr, verts, values, F, out, np);
+  internal::write_output_mesh(pyr, verts, [&](std::vector<Index>& faces) { faces.swap(F); },
+                              [&](std::vector<std::vector<double> >& values) {
+                                std::vector<Index> no_faces;
+                                internal::reconstruct_arrays(pyr, 0, values, no_faces, false);   // values only: the faces are built above
+                                for(std::size_t c = 0; c < values.size(); ++c)   // level 0's rows are the global numbers: keep those of verts
+                                {
+                                  const std::size_t dim = pyr.dimensions()[c];
+                                  for(std::size_t r = 0; r < verts.size(); ++r)
+                                    internal::copy_values(values[c].data() + std::size_t(verts[r]) * dim, dim, values[c].data() + r * dim);
+                                  values[c].resize(verts.size() * dim);
+                                }
+                              },
+                              out, np);
   return threshold;
 }
 

@@ -17,12 +17,26 @@
 #ifdef CGAL_LINKED_WITH_TBB
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
 #include <tbb/parallel_sort.h>
 #endif
 
 namespace CGAL {
 namespace Surface_mesh_multiresolution {
 namespace internal {
+
+// Runs f() and g() (independent: no data written by one is read by the other), at the same
+// time with TBB when it is linked, else one after the other.
+template <typename F, typename G>
+void parallel_invoke(const F& f, const G& g)
+{
+#ifdef CGAL_LINKED_WITH_TBB
+  tbb::parallel_invoke(f, g);
+#else
+  f();
+  g();
+#endif
+}
 
 // Calls f(first, last) on consecutive blocks of [0, n), in parallel with TBB when it is
 // linked and n is large enough to pay for it. Callers only use it for loops whose
