@@ -243,19 +243,45 @@ void reconstruct_faces(const Pyramid<TriangleMesh>& pyr, std::size_t level, std:
     expand_faces(pyr.levels()[k], F);
 }
 
-template <typename TriangleMesh>
-void reconstruct_arrays(const Pyramid<TriangleMesh>& pyr, std::size_t level,
-                        std::vector<std::vector<double> >& values, std::vector<Index>& F, bool faces = true)
+// The buffers of the values' reconstruction, reserved at their largest size by reserve(), so
+// that the reconstruction itself allocates nothing (it may run on another thread: see
+// run_beside()).
+struct Values_workspace
 {
-  const std::size_t nc = pyr.number_of_channels();
-  values = pyr.coarse_values();
-  if(faces)
-    reconstruct_faces(pyr, level, F);
-  else
-    F.clear();
+  std::vector<std::vector<double> > values;   // per channel, rows of the current level
   std::vector<double> state, prediction;
   std::vector<unsigned char> is_odd;
-  std::vector<Index> row_of(pyr.number_of_levels() > level ? pyr.number_of_input_vertices() : 0);
+  std::vector<Index> row_of;
+
+  template <typename TriangleMesh>
+  void reserve(const Pyramid<TriangleMesh>& pyr, std::size_t level)
+  {
+    const std::size_t nc = pyr.number_of_channels(), n = pyr.number_of_vertices(level);
+    const std::size_t dim = *std::max_element(pyr.dimensions().begin(), pyr.dimensions().end());
+    values.resize(nc);
+    for(std::vector<double>& v : values)
+      v.reserve(n * dim);
+    state.reserve(n * dim);
+    prediction.reserve(n * dim);
+    is_odd.reserve(n);
+    row_of.resize(pyr.number_of_levels() > level ? pyr.number_of_input_vertices() : 0);
+  }
+};
+
+// The values of every channel in rows of M_level (ws.values; see reconstruct_arrays()).
+template <typename TriangleMesh>
+void reconstruct_values(const Pyramid<TriangleMesh>& pyr, std::size_t level, Values_workspace& ws)
+{
+  const std::size_t nc = pyr.number_of_channels();
+  std::vector<std::vector<double> >& values = ws.values;
+  values.resize(nc);
+  for(std::size_t c = 0; c < nc; ++c)
+    values[c].assign(pyr.coarse_values()[c].begin(), pyr.coarse_values()[c].end());
+  std::vector<double>& state = ws.state;
+  std::vector<double>& prediction = ws.prediction;
+  std::vector<unsigned char>& is_odd = ws.is_odd;
+  std::vector<Index>& row_of = ws.row_of;
+  row_of.resize(pyr.number_of_levels() > level ? pyr.number_of_input_vertices() : 0);
   for(std::size_t k = pyr.number_of_levels(); k-- > level; )
   {
     const Pyramid_level& lev = pyr.levels()[k];
@@ -275,6 +301,19 @@ void reconstruct_arrays(const Pyramid<TriangleMesh>& pyr, std::size_t level,
       v.swap(state);
     }
   }
+}
+
+template <typename TriangleMesh>
+void reconstruct_arrays(const Pyramid<TriangleMesh>& pyr, std::size_t level,
+                        std::vector<std::vector<double> >& values, std::vector<Index>& F, bool faces = true)
+{
+  if(faces)
+    reconstruct_faces(pyr, level, F);
+  else
+    F.clear();
+  Values_workspace ws;
+  reconstruct_values(pyr, level, ws);
+  values.swap(ws.values);
 }
 
 // Writes the vertices `verts` (global numbers, increasing) with their values and the faces
@@ -332,7 +371,7 @@ void write_output_mesh(const Pyramid<TriangleMesh>& pyr, const std::vector<Index
     compute_values(values);
   }
   else
-    parallel_invoke([&] {
+    run_beside([&] {
       std::vector<Index> F;
       compute_faces(F);
       clear_keeping_properties(out, 0);
@@ -418,11 +457,13 @@ void reconstruct(const Pyramid<TriangleMesh>& pyr, OutputMesh& out, const NamedP
     throw std::invalid_argument("reconstruct: level " + std::to_string(level) + " does not exist (the pyramid has levels 0 to "
                                 + std::to_string(pyr.number_of_levels()) + ")");
   const bool keep_connectivity = choose_parameter(get_parameter(np, internal_np::keep_connectivity), false);
+  internal::Values_workspace ws;
+  ws.reserve(pyr, level);                      // here: the values may be computed on another thread
   internal::write_output_mesh(pyr, pyr.vertices(level),
                               [&](std::vector<internal::Index>& F) { internal::reconstruct_faces(pyr, level, F); },
                               [&](std::vector<std::vector<double> >& values) {
-                                std::vector<internal::Index> no_faces;
-                                internal::reconstruct_arrays(pyr, level, values, no_faces, false);
+                                internal::reconstruct_values(pyr, level, ws);
+                                values.swap(ws.values);
                               },
                               out, np, keep_connectivity, keep_connectivity ? pyr.number_of_faces(level) : 0);
 }

@@ -17,7 +17,7 @@
 #ifdef CGAL_LINKED_WITH_TBB
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
-#include <tbb/parallel_invoke.h>
+#include <tbb/task_group.h>
 #include <tbb/parallel_sort.h>
 #endif
 
@@ -25,16 +25,23 @@ namespace CGAL {
 namespace Surface_mesh_multiresolution {
 namespace internal {
 
-// Runs f() and g() (independent: no data written by one is read by the other), at the same
-// time with TBB when it is linked, else one after the other.
-template <typename F, typename G>
-void parallel_invoke(const F& f, const G& g)
+// Runs here() in the calling thread and beside() at the same time in a TBB task when TBB is
+// linked, else one after the other; they must be independent (no data written by one is read
+// by the other). beside() should not allocate large buffers: on another thread, glibc's malloc
+// serves them from that thread's arena, whose freed pages go back to the system, so every call
+// pays their page faults again (reserve them in the calling thread first).
+template <typename Here, typename Beside>
+void run_beside(const Here& here, const Beside& beside)
 {
 #ifdef CGAL_LINKED_WITH_TBB
-  tbb::parallel_invoke(f, g);
+  tbb::task_group group;
+  group.run([&] { beside(); });
+  try { here(); }
+  catch(...) { group.wait(); throw; }
+  group.wait();
 #else
-  f();
-  g();
+  here();
+  beside();
 #endif
 }
 
