@@ -819,7 +819,7 @@ TEST_CASE("the look-ahead greedy selection takes the collapses of the plain gree
   }
 }
 
-TEST_CASE("collapse-target rows are found by galloping like a binary search", "[pyramid]")
+TEST_CASE("collapse-target rows are the rows holding the targets", "[pyramid]")
 {
   typedef SMR::internal::Index Index;
   CGAL::Random rng(12);

@@ -45,35 +45,15 @@ struct Pyramid_level
   std::vector<Index> renamed_vertices;         // the odd vertex at that corner in M_k
 };
 
-// The rows (in M_k) of the vertices the odd vertices of `level` collapse into. A target is
-// a neighbour of its odd vertex, usually a few rows away on meshes whose vertex order has some
-// locality: the search gallops from the odd vertex's row before it bisects.
+// The rows (in M_k) of the vertices the odd vertices of `level` collapse into (a binary
+// search in the level's increasing vertex numbers; callers that analyse a level repeatedly
+// compute them once, reconstruction uses a global-to-row map instead).
 inline void collapse_target_rows(const Pyramid_level& level, std::vector<Index>& target_rows)
 {
-  const std::vector<Index>& v = level.vertices;
   target_rows.resize(level.collapse_targets.size());
   for(std::size_t q = 0; q < target_rows.size(); ++q)
-  {
-    const Index t = level.collapse_targets[q];
-    const std::size_t r = level.odd_rows[q];
-    std::size_t lo, hi;                                  // v[lo] < t <= v[hi - 1] (or the ends)
-    if(v[r] < t)
-    {
-      std::size_t step = 1;
-      lo = r;
-      hi = r + 1;
-      while(hi < v.size() && v[hi] < t) { lo = hi; hi = (std::min)(v.size(), hi + step); step *= 2; }
-      hi = (std::min)(v.size(), hi + 1);
-    }
-    else
-    {
-      std::size_t step = 1;
-      hi = r + 1;
-      lo = r;
-      while(lo > 0 && v[lo - 1] >= t) { hi = lo; lo = (lo > step) ? lo - step : 0; step *= 2; }
-    }
-    target_rows[q] = static_cast<Index>(std::lower_bound(v.begin() + lo, v.begin() + hi, t) - v.begin());
-  }
+    target_rows[q] = static_cast<Index>(std::lower_bound(level.vertices.begin(), level.vertices.end(), level.collapse_targets[q])
+                                        - level.vertices.begin());
 }
 
 } // namespace internal

@@ -660,9 +660,9 @@ Pyramid<TriangleMesh> decompose(const TriangleMesh& tm, const NamedParameters& n
         Index renamed = first_renamed[i], gone = first_removed[i];
         for(Index q = th.out_offsets[c.o]; q < th.out_offsets[c.o + 1]; ++q)
         {
-          const Index g = th.out[q];                      // o -> a in face g / 3, o at corner g % 3
-          if(!th.has_face(g))
+          if(th.out_apex[q] == internal::invalid_index)   // no face (the same test as the count)
             continue;
+          const Index g = th.out[q];                      // o -> a in face g / 3, o at corner g % 3
           const Index p = g / 3;
           Index* t = F.data() + 3 * std::size_t(p);
           if(holds_target(q, c.e))
