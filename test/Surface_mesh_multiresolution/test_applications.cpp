@@ -16,6 +16,7 @@
 #include <array>
 #include <limits>
 #include <set>
+#include <utility>
 #include <vector>
 
 namespace SMR = CGAL::Surface_mesh_multiresolution;
@@ -186,16 +187,16 @@ TEST_CASE("soft thresholding (Eq. 8): t = 0 is the identity, t = infinity zeroes
   CHECK(coordinates(inf) == coordinates(low));
   // the rule on one vector: shrunk by t along itself, or zeroed
   SMR::Pyramid<Mesh> one = pyr;
-  const std::vector<double> d = one.details(1, 0);
+  const std::vector<double> d = std::as_const(one).details(1, 0);
   SMR::soft_threshold(one, 1e-3, SMR::parameters::levels(std::size_t(1)));
-  const std::vector<double>& e = one.details(1, 0);
+  const std::vector<double>& e = std::as_const(one).details(1, 0);
   for(std::size_t i = 0; i < d.size(); i += 3)
   {
     const double l = std::sqrt(d[i] * d[i] + d[i + 1] * d[i + 1] + d[i + 2] * d[i + 2]);
     for(int k = 0; k < 3; ++k)
       CHECK(e[i + k] == Approx(l <= 1e-3 ? 0. : d[i + k] * (1. - 1e-3 / l)).margin(1e-15));
   }
-  CHECK(one.details(2, 0) == pyr.details(2, 0));   // only the finest level was asked
+  CHECK(std::as_const(one).details(2, 0) == std::as_const(pyr).details(2, 0));   // only the finest level was asked
   REQUIRE_THROWS_AS(SMR::soft_threshold(one, -1.), std::invalid_argument);
   REQUIRE_THROWS_AS(SMR::soft_threshold(one, 1., SMR::parameters::levels(pyr.number_of_levels() + 1)), std::invalid_argument);
   REQUIRE_THROWS_AS(SMR::soft_threshold(one, 1., SMR::parameters::channel(std::size_t(3))), std::invalid_argument);

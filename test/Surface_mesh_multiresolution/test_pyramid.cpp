@@ -130,7 +130,7 @@ void check_levels(const TM& tm, const SMR::Pyramid<TM>& pyr)
 
     // collapsing the odd vertices of M_{j-1} into their targets gives M_j: the same faces,
     // named by the vertices' ranks in the input
-    const auto& targets = pyr.levels()[j - 1].collapse_targets;
+    const auto targets = pyr.collapse_targets(j);
     std::map<typename boost::graph_traits<TM>::vertex_descriptor, std::size_t> gid;
     for(const auto& p : vertex_of) gid[p.second] = p.first;
     for(std::size_t q = 0; q < odd.size(); ++q)
@@ -817,28 +817,4 @@ TEST_CASE("the look-ahead greedy selection takes the collapses of the plain gree
       }
     }
   }
-}
-
-TEST_CASE("collapse-target rows are the rows holding the targets", "[pyramid]")
-{
-  typedef SMR::internal::Index Index;
-  CGAL::Random rng(12);
-  SMR::internal::Pyramid_level level;
-  for(Index g = 0; g < 20000; ++g)
-    if(rng.get_int(0, 3) != 0)
-      level.vertices.push_back(g);
-  const std::size_t n = level.vertices.size();
-  for(std::size_t r = 0; r < n; r += 1 + std::size_t(rng.get_int(0, 5)))
-  {
-    level.odd_rows.push_back(static_cast<Index>(r));
-    // near (a neighbour in a coherent order), far, or at either end
-    const int kind = rng.get_int(0, 4);
-    const long t = kind == 0 ? long(r) + rng.get_int(-40, 41) : kind == 1 ? rng.get_int(0, int(n)) : kind == 2 ? 0 : long(n) - 1;
-    level.collapse_targets.push_back(level.vertices[std::size_t((std::max)(0L, (std::min)(long(n) - 1, t)))]);
-  }
-  std::vector<Index> rows;
-  SMR::internal::collapse_target_rows(level, rows);
-  REQUIRE(rows.size() == level.collapse_targets.size());
-  for(std::size_t q = 0; q < rows.size(); ++q)
-    CHECK(level.vertices[rows[q]] == level.collapse_targets[q]);
 }

@@ -9,6 +9,7 @@
 #define CGAL_SURFACE_MESH_MULTIRESOLUTION_PYRAMID_H
 
 #include <CGAL/Surface_mesh_multiresolution/internal/config.h>
+#include <CGAL/Surface_mesh_multiresolution/internal/helpers.h>
 #include <CGAL/Surface_mesh_multiresolution/internal/Sparse_weights.h>
 #include <CGAL/Surface_mesh_multiresolution/Relaxation_scheme.h>
 
@@ -23,41 +24,68 @@ namespace Surface_mesh_multiresolution {
 /// \cond SKIP_IN_MANUAL
 namespace internal {
 
-// One level of the pyramid: what goes from M_k to M_{k+1} and back. Vertices are named by
-// their global number (their rank in vertices(tm) of the input); rows of M_k are its
-// vertices in increasing global number.
+// One level of the pyramid: what goes from M_k to M_{k+1} and back, in one numbering: the
+// rows of M_k, its vertices in increasing input number. Row j of M_{k+1} is even_rows[j] of
+// M_k. The invariants (checked by check_pyramid(), Pyramid_checks.h) are stated there.
 struct Pyramid_level
 {
-  std::vector<Index> vertices;                 // global numbers of the vertices of M_k, increasing
+  std::vector<Index> vertices;                 // input number of every row (increasing); derived, not saved
   Sparse_weights weights;                      // lambda^k over the rows of M_k
   std::vector<std::vector<double> > details;   // per channel: dimension doubles per row of M_k
   // Exactness: f = fl(R f + d) can differ from f by rounding; the few components where it
   // does carry an additive correction, so that reconstruction returns f bit for bit.
-  std::vector<std::vector<std::pair<Index, double> > > corrections;   // per channel: (row * dimension + component, correction)
+  std::vector<std::vector<std::pair<Index, double> > > corrections;   // per channel: (row * dimension + component, correction), increasing
   std::vector<Index> odd_rows;                 // rows of M_k removed to make M_{k+1} (increasing)
-  std::vector<Index> even_rows;                // the other rows (increasing)
-  std::vector<Index> collapse_targets;         // global number of the vertex each odd vertex collapsed into
-  // faces: M_{k+1}'s face array is M_k's with the removed faces taken out (order kept) and
-  // the corners of the odd vertices renamed to their targets
+  std::vector<Index> even_rows;                // the other rows (increasing); derived, not saved
+  std::vector<Index> collapse_targets;         // per odd row q: the (even) row the odd vertex collapsed into
+  // faces: M_{k+1}'s face array is M_k's with the removed faces taken out (order kept), the
+  // corners of the odd vertices renamed to their targets, and the rows renumbered
   std::vector<Index> removed_face_positions;   // positions in M_k's face array, increasing
-  std::vector<Index> removed_faces;            // 3 global numbers per removed face
+  std::vector<Index> removed_faces;            // 3 rows of M_k per removed face
   std::vector<Index> renamed_corners;          // 3 * position in M_k's face array + corner
-  std::vector<Index> renamed_vertices;         // the odd vertex at that corner in M_k
+  std::vector<Index> renamed_vertices;         // the odd row at that corner in M_k
+
+  std::size_t number_of_rows() const { return vertices.size(); }
 };
 
-// The rows (in M_k) of the vertices the odd vertices of `level` collapse into (a binary
-// search in the level's increasing vertex numbers; callers that analyse a level repeatedly
-// compute them once, reconstruction uses a global-to-row map instead).
-inline void collapse_target_rows(const Pyramid_level& level, std::vector<Index>& target_rows)
-{
-  target_rows.resize(level.collapse_targets.size());
-  for(std::size_t q = 0; q < target_rows.size(); ++q)
-    target_rows[q] = static_cast<Index>(std::lower_bound(level.vertices.begin(), level.vertices.end(), level.collapse_targets[q])
-                                        - level.vertices.begin());
-}
+// The package's builders (decompose(), read_pyramid(), denoise()) write into a pyramid
+// through this class; users only read it (and edit details through fixed-size views).
+struct Pyramid_access;
 
 } // namespace internal
 /// \endcond
+
+/*!
+ * \ingroup PkgSurfaceMeshMultiresolutionRef
+ * a view of the details of one level and one channel of a pyramid: their values can be
+ * changed, their number cannot (so that `reconstruct()` always finds one detail per vertex).
+ * It behaves as a range of `double`.
+ */
+class Detail_view
+{
+public:
+  /// an empty view
+  Detail_view() = default;
+  /// \cond SKIP_IN_MANUAL
+  Detail_view(double* data, std::size_t size) : m_data(data), m_size(size) {}
+  /// \endcond
+  /// the number of doubles: the number of vertices of the level times the channel's dimension
+  std::size_t size() const { return m_size; }
+  /// whether the view holds no value
+  bool empty() const { return m_size == 0; }
+  /// the first value
+  double* data() const { return m_data; }
+  /// the first value
+  double* begin() const { return m_data; }
+  /// past the last value
+  double* end() const { return m_data + m_size; }
+  /// the `i`-th value (no range check)
+  double& operator[](std::size_t i) const { return m_data[i]; }
+
+private:
+  double* m_data = nullptr;
+  std::size_t m_size = 0;
+};
 
 /*!
  * \ingroup PkgSurfaceMeshMultiresolutionRef
@@ -124,14 +152,15 @@ public:
 
   /*!
    * the details \f$ D_j \f$ of channel `c`, \f$ 1 \le j \le K \f$: `channel_dimension(c)` doubles
-   * for every vertex of \f$ M_{j-1} \f$, in the order of `vertices(j-1)`. They can be modified
-   * (filtering); `reconstruct()` uses them as they are.
+   * for every vertex of \f$ M_{j-1} \f$, in the order of `vertices(j-1)`. Their values can be
+   * modified (filtering), their number cannot; `reconstruct()` uses them as they are.
    */
-  std::vector<double>& details(std::size_t j, std::size_t c)
+  Detail_view details(std::size_t j, std::size_t c)
   {
     check_detail_level(j);
     check_channel(c);
-    return m_levels[j - 1].details[c];
+    std::vector<double>& d = m_levels[j - 1].details[c];
+    return Detail_view(d.data(), d.size());
   }
 
   /// read access to the details \f$ D_j \f$ of channel `c`
@@ -142,34 +171,59 @@ public:
     return m_levels[j - 1].details[c];
   }
 
-  /// the global numbers of the vertices removed between \f$ M_{j-1} \f$ and \f$ M_j \f$ (the odd vertices of \f$ D_j \f$), \f$ 1 \le j \le K \f$
+  /*!
+   * the length of the detail of every vertex of \f$ M_{j-1} \f$ in channel `c` (the
+   * Euclidean norm of its `channel_dimension(c)` values; the absolute value for a scalar
+   * channel), in the order of `vertices(j-1)`, \f$ 1 \le j \le K \f$. Computed without overflow or
+   * underflow: finite details have finite lengths.
+   */
+  std::vector<double> detail_lengths(std::size_t j, std::size_t c) const
+  {
+    const std::vector<double>& d = details(j, c);
+    const std::size_t dim = m_dimensions[c];
+    std::vector<double> lengths(d.size() / dim);
+    for(std::size_t r = 0; r < lengths.size(); ++r)
+      lengths[r] = internal::scaled_length(d.data() + r * dim, dim);
+    return lengths;
+  }
+
+  /// the input numbers of the vertices removed between \f$ M_{j-1} \f$ and \f$ M_j \f$ (the odd vertices of \f$ D_j \f$), increasing, \f$ 1 \le j \le K \f$
   std::vector<std::uint32_t> odd_vertices(std::size_t j) const
   {
     check_detail_level(j);
+    const internal::Pyramid_level& lev = m_levels[j - 1];
     std::vector<std::uint32_t> out;
-    for(Index r : m_levels[j - 1].odd_rows)
-      out.push_back(m_levels[j - 1].vertices[r]);
+    out.reserve(lev.odd_rows.size());
+    for(Index r : lev.odd_rows)
+      out.push_back(lev.vertices[r]);
+    return out;
+  }
+
+  /// the input number of the vertex each odd vertex of \f$ D_j \f$ was collapsed into (in the order of `odd_vertices(j)`), \f$ 1 \le j \le K \f$
+  std::vector<std::uint32_t> collapse_targets(std::size_t j) const
+  {
+    check_detail_level(j);
+    const internal::Pyramid_level& lev = m_levels[j - 1];
+    std::vector<std::uint32_t> out;
+    out.reserve(lev.collapse_targets.size());
+    for(Index r : lev.collapse_targets)
+      out.push_back(lev.vertices[r]);
     return out;
   }
 
   /// \cond SKIP_IN_MANUAL
   typedef internal::Index Index;
-  std::vector<internal::Pyramid_level>& levels() { return m_levels; }
+  // read access for the package's algorithms; writing goes through internal::Pyramid_access
   const std::vector<internal::Pyramid_level>& levels() const { return m_levels; }
-  std::vector<Index>& coarse_vertices() { return m_coarse_vertices; }
-  const std::vector<Index>& coarse_vertices() const { return m_coarse_vertices; }
-  std::vector<Index>& coarse_faces() { return m_coarse_faces; }
   const std::vector<Index>& coarse_faces() const { return m_coarse_faces; }
-  std::vector<std::vector<double> >& coarse_values() { return m_coarse_values; }
   const std::vector<std::vector<double> >& coarse_values() const { return m_coarse_values; }
-  std::vector<std::size_t>& dimensions() { return m_dimensions; }
   const std::vector<std::size_t>& dimensions() const { return m_dimensions; }
-  std::size_t& number_of_input_vertices() { return m_number_of_input_vertices; }
   std::size_t number_of_input_vertices() const { return m_number_of_input_vertices; }
-  void set_relaxation_scheme(Relaxation_scheme s) { m_scheme = s; }
   /// \endcond
 
 private:
+  friend struct internal::Pyramid_access;
+
   void check_mesh_level(std::size_t k) const
   {
     if(k > m_levels.size())
@@ -193,10 +247,27 @@ private:
   std::size_t m_number_of_input_vertices = 0;
   std::vector<std::size_t> m_dimensions{3};
   std::vector<internal::Pyramid_level> m_levels;
-  std::vector<Index> m_coarse_vertices;                 // global numbers, increasing
-  std::vector<Index> m_coarse_faces;                    // 3 global numbers per face
+  std::vector<Index> m_coarse_vertices;                 // input numbers of the rows of M_K, increasing (derived, not saved)
+  std::vector<Index> m_coarse_faces;                    // 3 rows of M_K per face
   std::vector<std::vector<double> > m_coarse_values;    // per channel, rows of M_K
 };
+
+/// \cond SKIP_IN_MANUAL
+namespace internal {
+
+struct Pyramid_access
+{
+  template <typename TM> static std::vector<Pyramid_level>& levels(Pyramid<TM>& p) { return p.m_levels; }
+  template <typename TM> static std::vector<Index>& coarse_vertices(Pyramid<TM>& p) { return p.m_coarse_vertices; }
+  template <typename TM> static std::vector<Index>& coarse_faces(Pyramid<TM>& p) { return p.m_coarse_faces; }
+  template <typename TM> static std::vector<std::vector<double> >& coarse_values(Pyramid<TM>& p) { return p.m_coarse_values; }
+  template <typename TM> static std::vector<std::size_t>& dimensions(Pyramid<TM>& p) { return p.m_dimensions; }
+  template <typename TM> static void set_number_of_input_vertices(Pyramid<TM>& p, std::size_t n) { p.m_number_of_input_vertices = n; }
+  template <typename TM> static void set_relaxation_scheme(Pyramid<TM>& p, Relaxation_scheme s) { p.m_scheme = s; }
+};
+
+} // namespace internal
+/// \endcond
 
 } // namespace Surface_mesh_multiresolution
 } // namespace CGAL

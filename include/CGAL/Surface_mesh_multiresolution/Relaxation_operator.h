@@ -106,15 +106,40 @@ public:
   }
 
   /*!
-   * relaxes, in place and with the stored weights, the channels of \`tm\` selected by \`np\`:
-   * the geometry (unless \`relax_geometry(false)\`) and every map of \`vertex_attribute_maps\`,
-   * \`number_of_iterations\` times. The weights are not recomputed; \`relax()\` recomputes them.
+   * relaxes, in place and with the stored weights, the channels of `tm` selected by `np`:
+   * the geometry (unless `relax_geometry(false)`) and every map of `vertex_attribute_maps`,
+   * `number_of_iterations` times. The weights are not recomputed; `relax()` recomputes them.
    *
-   * \tparam NamedParameters a sequence of \\ref smr_namedparameters "Named Parameters"
+   * \tparam NamedParameters a sequence of \ref smr_namedparameters "Named Parameters"
    * \param tm the mesh the operator was built on (same vertices, in the same order)
-   * \param np the parameters \`relax_geometry\`, \`vertex_attribute_maps\`, \`number_of_iterations\`,
-   *        \`vertex_point_map\` and \`geom_traits\`, as documented for \`relax()\`
-   * \throws std::invalid_argument if \`tm\` does not have \`number_of_vertices()\` vertices, or a
+   * \param np an optional sequence of \ref smr_namedparameters "Named Parameters" among the ones listed below
+   *
+   * \cgalNamedParamsBegin
+   *   \cgalParamNBegin{number_of_iterations}
+   *     \cgalParamDescription{the number of relaxation steps}
+   *     \cgalParamType{unsigned int}
+   *     \cgalParamDefault{`1`}
+   *   \cgalParamNEnd
+   *   \cgalParamNBegin{relax_geometry}
+   *     \cgalParamDescription{whether the vertex positions are relaxed}
+   *     \cgalParamType{bool}
+   *     \cgalParamDefault{`true`}
+   *   \cgalParamNEnd
+   *   \cgalParamNBegin{vertex_attribute_maps}
+   *     \cgalParamDescription{the attribute channels to relax (a tuple of vertex property maps, or one map)}
+   *     \cgalParamDefault{no attribute channel}
+   *   \cgalParamNEnd
+   *   \cgalParamNBegin{vertex_point_map}
+   *     \cgalParamDescription{a writable property map associating points to the vertices of `tm`}
+   *     \cgalParamDefault{`boost::get(CGAL::vertex_point\, tm)`}
+   *   \cgalParamNEnd
+   *   \cgalParamNBegin{geom_traits}
+   *     \cgalParamDescription{an instance of a geometric traits class}
+   *     \cgalParamDefault{a `CGAL::Kernel_traits` compatible with the point type}
+   *   \cgalParamNEnd
+   * \cgalNamedParamsEnd
+   *
+   * \throws std::invalid_argument if `tm` does not have `number_of_vertices()` vertices, or a
    *         channel value is not finite
    */
   template <typename NamedParameters = parameters::Default_named_parameters>

@@ -9,6 +9,9 @@
 #define CGAL_SURFACE_MESH_MULTIRESOLUTION_DENOISE_H
 
 #include <CGAL/Surface_mesh_multiresolution/internal/config.h>
+#include <CGAL/Surface_mesh_multiresolution/internal/helpers.h>
+#include <CGAL/Surface_mesh_multiresolution/internal/level_transform.h>
+#include <CGAL/Surface_mesh_multiresolution/internal/relaxation_weights.h>
 #include <CGAL/Surface_mesh_multiresolution/decompose.h>
 #include <CGAL/Surface_mesh_multiresolution/filter.h>
 #include <CGAL/Surface_mesh_multiresolution/reconstruct.h>
@@ -40,9 +43,7 @@ std::size_t chosen_channel(const Pyramid<TriangleMesh>& pyr, const NamedParamete
 // Eq. 8 on one vector of dimension dim: zero if |v| <= t, else v - t v/|v|
 inline void soft_shrink(double* v, std::size_t dim, double t)
 {
-  double length = 0.;
-  for(std::size_t k = 0; k < dim; ++k) length += v[k] * v[k];
-  length = std::sqrt(length);
+  const double length = scaled_length(v, dim);
   const double factor = length > t ? 1. - t / length : 0.;
   for(std::size_t k = 0; k < dim; ++k) v[k] *= factor;
 }
@@ -86,7 +87,7 @@ void soft_threshold(Pyramid<TriangleMesh>& pyr, double t, const NamedParameters&
   const std::size_t dim = pyr.channel_dimension(c);
   for(std::size_t j = 1; j <= n; ++j)
   {
-    std::vector<double>& d = pyr.details(j, c);
+    const Detail_view d = pyr.details(j, c);
     for(std::size_t i = 0; i < d.size(); i += dim)
       internal::soft_shrink(d.data() + i, dim, t);
   }
@@ -147,8 +148,8 @@ inline double median_absolute_deviation(std::vector<double>& x)
 inline void smoothed_vertex_normals(const Sparse_weights& w, const std::vector<double>& x, const std::vector<Index>& F,
                                     std::vector<double>& normals)
 {
-  std::vector<double> y(x.size());
-  w.apply(x.data(), y.data(), 3);
+  std::vector<double> scaled, y(x.size());
+  w.apply(geometry_for_computations(x, scaled).data(), y.data(), 3);   // normals do not depend on the scale
   normals.assign(x.size(), 0.);
   for(std::size_t i = 0; i + 2 < F.size(); i += 3)
   {
@@ -213,10 +214,42 @@ void uniform_finest_level(const Pyramid<TriangleMesh>& pyr, const std::vector<do
   finest.odd_rows = level.odd_rows;
   finest.even_rows = level.even_rows;
   finest.collapse_targets = level.collapse_targets;
+  std::vector<double> scaled;
   Relaxation_weight_builder builder;
   std::vector<Relaxation_row_rule> rules;
   builder.set_connectivity(positions.size() / 3, F);
-  builder.build(Relaxation_scheme::UNIFORM, positions.data(), nullptr, finest.weights, rules);
+  builder.build(Relaxation_scheme::UNIFORM, geometry_for_computations(positions, scaled).data(), nullptr, finest.weights, rules);
+}
+
+// one step of denoise(): every detail moved towards its soft-thresholded value (Eq. 8) with `gain`
+inline void shrink_details_towards_threshold(std::vector<double>& d, std::size_t dim, double t, double gain)
+{
+  std::vector<double> shrunk(dim);
+  for(std::size_t i = 0; i < d.size(); i += dim)
+  {
+    double* v = d.data() + i;
+    copy_values(v, dim, shrunk.data());
+    soft_shrink(shrunk.data(), dim, t);
+    for(std::size_t k = 0; k < dim; ++k)
+      v[k] += gain * (shrunk[k] - v[k]);
+  }
+}
+
+// Channel c of the pyramid analysed again, level by level in the rows of each level, from its
+// new values x on M_0 (rows = input numbers): the details, corrections and coarsest values
+// then describe x exactly.
+template <typename TriangleMesh>
+void analyse_again(Pyramid<TriangleMesh>& pyr, std::size_t c, const std::vector<double>& x)
+{
+  const std::size_t dim = pyr.channel_dimension(c);
+  std::vector<double> f(x), next;
+  for(Pyramid_level& level : Pyramid_access::levels(pyr))
+  {
+    analyse_level(level, level.weights, dim, f, level.details[c], level.corrections[c]);
+    values_of_next_level(level, dim, f, next);
+    f.swap(next);
+  }
+  Pyramid_access::coarse_values(pyr)[c] = f;
 }
 
 } // namespace internal
@@ -258,7 +291,7 @@ double estimate_noise(const Pyramid<TriangleMesh>& pyr, const NamedParameters& n
   std::vector<double> d, normals;
   std::vector<std::pair<internal::Index, double> > corrections;
   const std::size_t dim = pyr.channel_dimension(c);
-  internal::analyse_level_values(finest, dim, values[c], d, corrections);
+  internal::analyse_level(finest, finest.weights, dim, values[c], d, corrections);
   if(c == 0)
     internal::smoothed_vertex_normals(finest.weights, values[0], F, normals);
   return internal::noise_of_finest_details(finest.weights, internal::residual_noise_factor(finest.weights), d, dim,
@@ -315,41 +348,27 @@ double denoise(Pyramid<TriangleMesh>& pyr, const NamedParameters& np = parameter
   internal::Pyramid_level finest;
   internal::uniform_finest_level(pyr, values[0], F, finest);
   std::vector<double> d, normals, state, prediction;
-  std::vector<std::pair<internal::Index, double> > corrections;
+  internal::Corrections corrections;
   std::vector<unsigned char> is_odd;
   internal::odd_row_flags(finest, is_odd);
   const double factor = internal::residual_noise_factor(finest.weights);   // the weights do not change
-  std::vector<internal::Index> target_rows;
-  internal::collapse_target_rows(finest, target_rows);
   double first_threshold = -1.;
   for(unsigned int step = 0; step < 2 * passes; ++step)
   {
-    internal::analyse_level_values(finest, target_rows, dim, x, d, corrections);
+    internal::analyse_level(finest, finest.weights, dim, x, d, corrections);
     if(c == 0)
       internal::smoothed_vertex_normals(finest.weights, x, F, normals);
     const double t = universal * internal::noise_of_finest_details(finest.weights, factor, d, dim, c == 0 ? &normals : nullptr);
     if(first_threshold < 0.)
       first_threshold = t;
-    const double gain = step % 2 == 0 ? 0.5 : -0.53;
-    std::vector<double> shrunk(dim);
-    for(std::size_t i = 0; i < n0; ++i)
-    {
-      double* v = d.data() + i * dim;
-      internal::copy_values(v, dim, shrunk.data());
-      internal::soft_shrink(shrunk.data(), dim, t);
-      for(std::size_t k = 0; k < dim; ++k)
-        v[k] += gain * (shrunk[k] - v[k]);
-    }
+    internal::shrink_details_towards_threshold(d, dim, t, step % 2 == 0 ? 0.5 : -0.53);
     // M_0 from M_1 (whose values are those of x) and the new details
-    internal::reconstruct_level_values(finest, dim, d, {}, is_odd, x, state, prediction);
+    state = x;
+    internal::odd_values_from_targets(finest, dim, state.data());
+    internal::synthesize_level(finest, finest.weights, dim, d.data(), {}, is_odd, state, prediction);
+    x.swap(state);
   }
-  // the pyramid now describes the result at every level
-  for(internal::Pyramid_level& level : pyr.levels())
-    internal::analyse_level_values(level, dim, x, level.details[c], level.corrections[c]);
-  const std::vector<internal::Index>& cv = pyr.coarse_vertices();
-  for(std::size_t r = 0; r < cv.size(); ++r)
-    std::copy(x.begin() + std::size_t(cv[r]) * dim, x.begin() + (std::size_t(cv[r]) + 1) * dim,
-              pyr.coarse_values()[c].begin() + r * dim);
+  internal::analyse_again(pyr, c, x);   // the pyramid now describes the result at every level
   return first_threshold;
 }
 

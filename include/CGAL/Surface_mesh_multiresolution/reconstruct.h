@@ -10,7 +10,10 @@
 
 #include <CGAL/Surface_mesh_multiresolution/internal/config.h>
 #include <CGAL/Surface_mesh_multiresolution/internal/channels.h>
-#include <CGAL/Surface_mesh_multiresolution/internal/relaxation_weights.h>
+#include <CGAL/Surface_mesh_multiresolution/internal/helpers.h>
+#include <CGAL/Surface_mesh_multiresolution/internal/level_transform.h>
+#include <CGAL/Surface_mesh_multiresolution/internal/parallel.h>
+#include <CGAL/Surface_mesh_multiresolution/internal/Triangle_halfedges.h>
 #include <CGAL/Surface_mesh_multiresolution/parameters.h>
 #include <CGAL/Surface_mesh_multiresolution/Pyramid.h>
 
@@ -19,6 +22,7 @@
 #include <CGAL/boost/graph/named_params_helper.h>
 #include <CGAL/Surface_mesh/Surface_mesh_fwd.h>
 
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 #include <tuple>
@@ -95,6 +99,8 @@ void build_triangle_mesh(FaceGraph& out, std::size_t nv, const std::vector<Index
   typedef typename GT::face_descriptor     face_descriptor;
   Triangle_halfedges th;
   th.build(nv, tri);
+  if(th.repeated_directed_edge)           // not possible for the levels of a valid pyramid
+    throw std::runtime_error("the faces do not form a halfedge mesh: a directed edge is shared by two faces");
   const std::size_t nh = th.source.size(), h0 = 3 * th.nf;
   std::vector<Index> border_out(nv, invalid_index);
   bool pinched = false;
@@ -117,7 +123,8 @@ void build_triangle_mesh(FaceGraph& out, std::size_t nv, const std::vector<Index
     {
       for(int i = 0; i < 3; ++i)
         corners[i] = vd[tri[3 * p + i]];
-      CGAL::Euler::add_face(corners, out);
+      if(CGAL::Euler::add_face(corners, out) == GT::null_face())
+        throw std::runtime_error("the faces do not form a halfedge mesh: face " + std::to_string(p) + " cannot be added");
     }
     return;
   }
@@ -152,87 +159,7 @@ void build_triangle_mesh(FaceGraph& out, std::size_t nv, const std::vector<Index
   }
 }
 
-// The face array of M_k from the one of M_{k+1}: removed faces back at their places, odd
-// vertices back at their corners (vertex splits on arrays). In place: merged from the end,
-// a kept face only moves towards the end.
-inline void expand_faces(const Pyramid_level& lev, std::vector<Index>& F)
-{
-  std::size_t from = F.size() / 3, next_removed = lev.removed_face_positions.size();
-  const std::size_t nf = from + next_removed;
-  F.resize(3 * nf);
-  for(std::size_t p = nf; next_removed > 0 && p-- > 0; )
-  {
-    if(lev.removed_face_positions[next_removed - 1] == p)
-    {
-      --next_removed;
-      copy_values(lev.removed_faces.data() + 3 * next_removed, 3, F.data() + 3 * p);
-    }
-    else
-      copy_values(F.data() + 3 * --from, 3, F.data() + 3 * p);
-  }
-  for(std::size_t q = 0; q < lev.renamed_corners.size(); ++q)
-    F[lev.renamed_corners[q]] = lev.renamed_vertices[q];
-}
-
-// Eq. 6 then Eq. 7 on the rows of M_k: `state` holds the even vertices' values of M_{k+1} and,
-// at each odd row, the value of its collapse target; on return, the values of M_k.
-inline void synthesize_level(const Pyramid_level& lev, std::size_t dim, const std::vector<double>& d,
-                             const std::vector<std::pair<Index, double> >& corrections,
-                             const std::vector<unsigned char>& is_odd, std::vector<double>& state,
-                             std::vector<double>& prediction)
-{
-  prediction.resize(state.size());
-  // Eq. 6: odd vertices (corrected before the even vertices read them)
-  lev.weights.apply_row_list(state.data(), prediction.data(), dim, lev.odd_rows.data(), lev.odd_rows.size());
-  for(Index r : lev.odd_rows)
-    for(std::size_t i = r * dim; i < (r + 1) * dim; ++i)
-      state[i] = prediction[i] + d[i];
-  for(const auto& cr : corrections)
-    if(is_odd[cr.first / dim])
-      state[cr.first] = state[cr.first] + cr.second;
-  // Eq. 7: even vertices, from the intermediate mesh
-  lev.weights.apply_row_list(state.data(), prediction.data(), dim, lev.even_rows.data(), lev.even_rows.size());
-  for(Index r : lev.even_rows)
-    for(std::size_t i = r * dim; i < (r + 1) * dim; ++i)
-      state[i] = prediction[i] + d[i];
-  for(const auto& cr : corrections)
-    if(!is_odd[cr.first / dim])
-      state[cr.first] = state[cr.first] + cr.second;
-}
-
-// The values of one channel on M_k from those on M_{k+1} (Eq. 6 and 7 with the level's
-// weights, the given details and exactness corrections). `v` holds the channel for all input
-// vertices (global numbers); only M_k's entries change.
-inline void reconstruct_level_values(const Pyramid_level& lev, std::size_t dim, const std::vector<double>& d,
-                                     const std::vector<std::pair<Index, double> >& corrections,
-                                     const std::vector<unsigned char>& is_odd, std::vector<double>& v,
-                                     std::vector<double>& state, std::vector<double>& prediction)
-{
-  const std::size_t nk = lev.vertices.size();
-  state.resize(nk * dim);
-  for(std::size_t r = 0; r < nk; ++r)
-    copy_values(v.data() + std::size_t(lev.vertices[r]) * dim, dim, state.data() + r * dim);
-  for(std::size_t q = 0; q < lev.odd_rows.size(); ++q)   // an odd vertex starts from the value of its target
-    copy_values(v.data() + std::size_t(lev.collapse_targets[q]) * dim, dim, state.data() + std::size_t(lev.odd_rows[q]) * dim);
-  synthesize_level(lev, dim, d, corrections, is_odd, state, prediction);
-  for(std::size_t r = 0; r < nk; ++r)
-    copy_values(state.data() + r * dim, dim, v.data() + std::size_t(lev.vertices[r]) * dim);
-}
-
-inline void odd_row_flags(const Pyramid_level& lev, std::vector<unsigned char>& is_odd)
-{
-  is_odd.assign(lev.vertices.size(), 0);
-  for(Index r : lev.odd_rows)
-    is_odd[r] = 1;
-}
-
-// The values of every channel, in rows of M_level (values[c][r * dim] is the value of
-// pyr.vertices(level)[r]; at level 0 rows are the input's vertex numbers), and the face array
-// of M_level (global numbers), rebuilt from the coarsest mesh: vertex splits on the face array,
-// then Eq. 6 and 7 per level. Values stay in the rows of the current level: the j-th row of
-// M_{k+1} is the j-th even row of M_k. With `faces` false, F is left empty and the vertex
-// splits are not replayed (values only).
-// The face array of M_level (global numbers): the vertex splits replayed from the coarsest mesh.
+// The face array of M_level (rows of M_level): the vertex splits replayed from the coarsest mesh.
 template <typename TriangleMesh>
 void reconstruct_faces(const Pyramid<TriangleMesh>& pyr, std::size_t level, std::vector<Index>& F)
 {
@@ -251,7 +178,6 @@ struct Values_workspace
   std::vector<std::vector<double> > values;   // per channel, rows of the current level
   std::vector<double> state, prediction;
   std::vector<unsigned char> is_odd;
-  std::vector<Index> row_of;
 
   template <typename TriangleMesh>
   void reserve(const Pyramid<TriangleMesh>& pyr, std::size_t level)
@@ -264,45 +190,35 @@ struct Values_workspace
     state.reserve(n * dim);
     prediction.reserve(n * dim);
     is_odd.reserve(n);
-    row_of.resize(pyr.number_of_levels() > level ? pyr.number_of_input_vertices() : 0);
   }
 };
 
-// The values of every channel in rows of M_level (ws.values; see reconstruct_arrays()).
+// The values of every channel in rows of M_level (ws.values[c][r * dim] is the value of
+// pyr.vertices(level)[r]; at level 0 rows are the input's vertex numbers), rebuilt from the
+// coarsest mesh by Eq. 6 and 7 level by level, in the rows of each level.
 template <typename TriangleMesh>
 void reconstruct_values(const Pyramid<TriangleMesh>& pyr, std::size_t level, Values_workspace& ws)
 {
   const std::size_t nc = pyr.number_of_channels();
-  std::vector<std::vector<double> >& values = ws.values;
-  values.resize(nc);
+  ws.values.resize(nc);
   for(std::size_t c = 0; c < nc; ++c)
-    values[c].assign(pyr.coarse_values()[c].begin(), pyr.coarse_values()[c].end());
-  std::vector<double>& state = ws.state;
-  std::vector<double>& prediction = ws.prediction;
-  std::vector<unsigned char>& is_odd = ws.is_odd;
-  std::vector<Index>& row_of = ws.row_of;
-  row_of.resize(pyr.number_of_levels() > level ? pyr.number_of_input_vertices() : 0);
+    ws.values[c].assign(pyr.coarse_values()[c].begin(), pyr.coarse_values()[c].end());
   for(std::size_t k = pyr.number_of_levels(); k-- > level; )
   {
     const Pyramid_level& lev = pyr.levels()[k];
-    odd_row_flags(lev, is_odd);
-    for(std::size_t r = 0; r < lev.vertices.size(); ++r)      // rows of the collapse targets
-      row_of[lev.vertices[r]] = static_cast<Index>(r);
+    odd_row_flags(lev, ws.is_odd);
     for(std::size_t c = 0; c < nc; ++c)
     {
       const std::size_t dim = pyr.dimensions()[c];
-      std::vector<double>& v = values[c];
-      state.resize(lev.vertices.size() * dim);
-      for(std::size_t j = 0; j < lev.even_rows.size(); ++j)
-        copy_values(v.data() + j * dim, dim, state.data() + std::size_t(lev.even_rows[j]) * dim);
-      for(std::size_t q = 0; q < lev.odd_rows.size(); ++q)   // an odd vertex starts from the value of its target
-        copy_values(state.data() + std::size_t(row_of[lev.collapse_targets[q]]) * dim, dim, state.data() + std::size_t(lev.odd_rows[q]) * dim);
-      synthesize_level(lev, dim, lev.details[c], lev.corrections[c], is_odd, state, prediction);
-      v.swap(state);
+      spread_to_level(lev, dim, ws.values[c].data(), ws.state);
+      synthesize_level(lev, lev.weights, dim, lev.details[c].data(), lev.corrections[c], ws.is_odd, ws.state, ws.prediction);
+      ws.values[c].swap(ws.state);
     }
   }
 }
 
+// the values of every channel and the face array of M_level, in its rows; with `faces` false,
+// F is left empty (values only)
 template <typename TriangleMesh>
 void reconstruct_arrays(const Pyramid<TriangleMesh>& pyr, std::size_t level,
                         std::vector<std::vector<double> >& values, std::vector<Index>& F, bool faces = true)
@@ -316,9 +232,9 @@ void reconstruct_arrays(const Pyramid<TriangleMesh>& pyr, std::size_t level,
   values.swap(ws.values);
 }
 
-// Writes the vertices `verts` (global numbers, increasing) with their values and the faces
+// Writes the vertices `verts` (input numbers, increasing) with their values and the faces
 // into `out`, emptied first, with the channel maps of `np`. compute_faces(F) gives the faces
-// (global numbers), compute_values(values) the values of every channel in rows of verts
+// (rows of verts), compute_values(values) the values of every channel in rows of verts
 // (values[c][r * dim] is the value of verts[r]); the output's connectivity and the values are
 // computed at the same time (with TBB), they are independent. With `keep_connectivity`,
 // `out` already has these vertices (in the order of vertices(out)) and these faces: only the
@@ -375,17 +291,7 @@ void write_output_mesh(const Pyramid<TriangleMesh>& pyr, const std::vector<Index
       std::vector<Index> F;
       compute_faces(F);
       clear_keeping_properties(out, 0);
-      if(verts.size() == pyr.number_of_input_vertices())
-        build_triangle_mesh(out, verts.size(), F, ordered);   // all vertices: rows are the global numbers
-      else
-      {
-        std::vector<Index> row_of(pyr.number_of_input_vertices(), invalid_index);
-        for(std::size_t r = 0; r < verts.size(); ++r)
-          row_of[verts[r]] = static_cast<Index>(r);
-        for(Index& g : F)
-          g = row_of[g];
-        build_triangle_mesh(out, verts.size(), F, ordered);
-      }
+      build_triangle_mesh(out, verts.size(), F, ordered);
     }, [&] { compute_values(values); });
   for(std::size_t r = 0; r < verts.size(); ++r)
     put(vpm, ordered[r], point(values[0][3 * r], values[0][3 * r + 1], values[0][3 * r + 2]));

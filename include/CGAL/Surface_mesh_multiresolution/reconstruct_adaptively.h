@@ -12,8 +12,10 @@
 #include <CGAL/Surface_mesh_multiresolution/parameters.h>
 #include <CGAL/Surface_mesh_multiresolution/Pyramid.h>
 #include <CGAL/Surface_mesh_multiresolution/reconstruct.h>
+#include <CGAL/Surface_mesh_multiresolution/internal/level_transform.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -26,15 +28,49 @@ namespace Surface_mesh_multiresolution {
 namespace internal {
 
 // What adaptive reconstruction needs of a pyramid: for every odd vertex, its level, its
-// collapse target, its faces in M_k (the vertex split that re-inserts it) and its detail
-// length in the guiding channels.
+// collapse target and its faces in M_k (the vertex split that re-inserts it), in input numbers
+// (an adaptive mesh mixes the vertices of several levels).
 struct Adaptive_hierarchy
 {
-  std::vector<Index> level_of;                 // per global number: the level where it is odd, or K (coarsest)
-  std::vector<Index> target_of;                // per global number: collapse target (odd vertices)
-  std::vector<std::vector<Index> > star;       // per level, per odd row q: 3 global numbers per face of its star in M_k
+  std::vector<Index> level_of;                 // per input number: the level where it is odd, or K (coarsest)
+  std::vector<Index> target_of;                // per input number: collapse target (odd vertices)
+  std::vector<std::vector<Index> > star;       // per level, per odd row q: 3 input numbers per face of its star in M_k
   std::vector<std::vector<Index> > star_offsets;
 };
+
+// the faces of the star of every odd vertex of `lev` in M_k (F: M_k's face array, rows), in
+// input numbers: the renamed ones and the removed ones (each holds one odd vertex)
+inline void stars_of_level(const Pyramid_level& lev, const std::vector<Index>& F, std::vector<Index>& odd_index,
+                           std::vector<Index>& star, std::vector<Index>& star_offsets)
+{
+  for(std::size_t q = 0; q < lev.odd_rows.size(); ++q)
+    odd_index[lev.odd_rows[q]] = static_cast<Index>(q);
+  std::vector<std::vector<Index> > faces_of(lev.odd_rows.size());
+  auto add_face = [&](Index q, const Index* t) {
+    for(int i = 0; i < 3; ++i)
+      faces_of[q].push_back(lev.vertices[t[i]]);
+  };
+  for(std::size_t q = 0; q < lev.renamed_corners.size(); ++q)
+    add_face(odd_index[lev.renamed_vertices[q]], F.data() + 3 * std::size_t(lev.renamed_corners[q] / 3));
+  for(std::size_t r = 0; r < lev.removed_face_positions.size(); ++r)
+    for(int i = 0; i < 3; ++i)
+    {
+      const Index q = odd_index[lev.removed_faces[3 * r + i]];
+      if(q != invalid_index)                                   // the one odd vertex of the face
+      {
+        add_face(q, lev.removed_faces.data() + 3 * r);
+        break;
+      }
+    }
+  star_offsets.assign(1, 0);
+  for(const auto& f : faces_of)
+  {
+    star.insert(star.end(), f.begin(), f.end());
+    star_offsets.push_back(static_cast<Index>(star.size()));
+  }
+  for(Index r : lev.odd_rows)
+    odd_index[r] = invalid_index;
+}
 
 template <typename TriangleMesh>
 void build_adaptive_hierarchy(const Pyramid<TriangleMesh>& pyr, Adaptive_hierarchy& h)
@@ -44,7 +80,7 @@ void build_adaptive_hierarchy(const Pyramid<TriangleMesh>& pyr, Adaptive_hierarc
   h.target_of.assign(n0, invalid_index);
   h.star.assign(K, std::vector<Index>());
   h.star_offsets.assign(K, std::vector<Index>());
-  std::vector<Index> F = pyr.coarse_faces(), G, odd_index(n0, invalid_index);
+  std::vector<Index> F = pyr.coarse_faces(), odd_index(n0, invalid_index);
   for(std::size_t k = K; k-- > 0; )
   {
     const Pyramid_level& lev = pyr.levels()[k];
@@ -53,36 +89,9 @@ void build_adaptive_hierarchy(const Pyramid<TriangleMesh>& pyr, Adaptive_hierarc
     {
       const Index o = lev.vertices[lev.odd_rows[q]];
       h.level_of[o] = static_cast<Index>(k);
-      h.target_of[o] = lev.collapse_targets[q];
-      odd_index[o] = static_cast<Index>(q);
+      h.target_of[o] = lev.vertices[lev.collapse_targets[q]];
     }
-    // the faces of the star of each odd vertex: the renamed ones and the removed ones
-    std::vector<std::vector<Index> > faces_of(lev.odd_rows.size());
-    for(std::size_t q = 0; q < lev.renamed_corners.size(); ++q)
-    {
-      const Index p = lev.renamed_corners[q] / 3;
-      faces_of[odd_index[lev.renamed_vertices[q]]].insert(faces_of[odd_index[lev.renamed_vertices[q]]].end(),
-                                                          F.begin() + 3 * p, F.begin() + 3 * p + 3);
-    }
-    for(std::size_t r = 0; r < lev.removed_face_positions.size(); ++r)
-      for(int i = 0; i < 3; ++i)
-      {
-        const Index v = lev.removed_faces[3 * r + i];
-        if(h.level_of[v] == k && odd_index[v] != invalid_index)   // the one odd vertex of the face
-        {
-          faces_of[odd_index[v]].insert(faces_of[odd_index[v]].end(), lev.removed_faces.begin() + 3 * r,
-                                        lev.removed_faces.begin() + 3 * r + 3);
-          break;
-        }
-      }
-    h.star_offsets[k].assign(1, 0);
-    for(const auto& f : faces_of)
-    {
-      h.star[k].insert(h.star[k].end(), f.begin(), f.end());
-      h.star_offsets[k].push_back(static_cast<Index>(h.star[k].size()));
-    }
-    for(Index r : lev.odd_rows)
-      odd_index[lev.vertices[r]] = invalid_index;
+    stars_of_level(lev, F, odd_index, h.star[k], h.star_offsets[k]);
   }
 }
 
@@ -94,7 +103,7 @@ std::vector<unsigned char> dependency_closure(const Pyramid<TriangleMesh>& pyr, 
 {
   const std::size_t K = pyr.number_of_levels();
   std::vector<unsigned char> keep(pyr.number_of_input_vertices(), 0);
-  for(Index g : pyr.coarse_vertices())
+  for(Index g : pyr.vertices(K))
     keep[g] = 1;
   for(std::size_t k = 0; k < K; ++k)
   {
@@ -114,7 +123,119 @@ std::vector<unsigned char> dependency_closure(const Pyramid<TriangleMesh>& pyr, 
   return keep;
 }
 
+// The importance of every odd vertex of every level: its detail length in the guiding
+// channel and, for an attribute guide, its geometry detail length brought to the guide's
+// scale by the ratio of the median finest detail lengths of the two channels.
+template <typename TriangleMesh>
+std::vector<std::vector<double> > odd_vertex_importance(const Pyramid<TriangleMesh>& pyr, std::size_t guide)
+{
+  const std::size_t K = pyr.number_of_levels();
+  auto median = [](std::vector<double> x) {
+    std::nth_element(x.begin(), x.begin() + x.size() / 2, x.end());
+    return x[x.size() / 2];
+  };
+  double geometry_scale = 0.;
+  if(guide != 0 && K > 0 && pyr.number_of_vertices(0) > 0)
+  {
+    const double lg = median(pyr.detail_lengths(1, 0)), lc = median(pyr.detail_lengths(1, guide));
+    geometry_scale = lg > 0. ? lc / lg : 0.;
+    if(!std::isfinite(geometry_scale))
+      geometry_scale = 0.;
+  }
+  std::vector<std::vector<double> > importance(K);
+  for(std::size_t k = 0; k < K; ++k)
+  {
+    const std::vector<double> lengths = pyr.detail_lengths(k + 1, guide);
+    std::vector<double> geometry;
+    if(guide != 0)
+      geometry = pyr.detail_lengths(k + 1, 0);
+    for(Index r : pyr.levels()[k].odd_rows)
+      importance[k].push_back(guide != 0 ? (std::max)(lengths[r], geometry_scale * geometry[r]) : lengths[r]);
+  }
+  return importance;
+}
+
+// the smallest threshold (among the importances, or infinity) whose closure has at most
+// `target` vertices: the closure shrinks as the threshold grows
+template <typename TriangleMesh>
+double threshold_for_budget(const Pyramid<TriangleMesh>& pyr, const Adaptive_hierarchy& h,
+                            const std::vector<std::vector<double> >& importance, std::size_t target)
+{
+  std::vector<double> all;
+  for(const std::vector<double>& level : importance)
+    all.insert(all.end(), level.begin(), level.end());
+  std::sort(all.begin(), all.end());
+  all.erase(std::unique(all.begin(), all.end()), all.end());
+  all.push_back(std::numeric_limits<double>::infinity());
+  auto count = [&](double t) {
+    const auto keep = dependency_closure(pyr, h, importance, t);
+    return std::size_t(std::count(keep.begin(), keep.end(), 1));
+  };
+  std::size_t lo = 0, hi = all.size() - 1;                 // count(all[hi]) is the coarsest mesh
+  while(lo < hi)
+  {
+    const std::size_t mid = (lo + hi) / 2;
+    if(count(all[mid]) <= target) hi = mid; else lo = mid + 1;
+  }
+  return all[lo];
+}
+
 inline std::uint64_t edge_key(Index a, Index b) { return (std::uint64_t(a) << 32) | b; }
+
+// The faces of the adaptive mesh (input numbers): the vertex splits of the kept odd
+// vertices, coarse to fine, on a face list indexed by its directed edges.
+// \throws std::runtime_error if a split does not find the face it splits (not possible for a
+// pyramid made by decompose(); a guard against crafted ones)
+template <typename TriangleMesh>
+std::vector<Index> adaptive_faces(const Pyramid<TriangleMesh>& pyr, const Adaptive_hierarchy& h, const std::vector<unsigned char>& keep)
+{
+  const std::size_t K = pyr.number_of_levels();
+  const std::vector<Index>& top = pyr.vertices(K);
+  std::vector<Index> F(pyr.coarse_faces().size());
+  for(std::size_t i = 0; i < F.size(); ++i)
+    F[i] = top[pyr.coarse_faces()[i]];
+  std::unordered_map<std::uint64_t, Index> face_of_edge;
+  face_of_edge.reserve(3 * F.size());
+  auto link = [&](Index f) {
+    for(int j = 0; j < 3; ++j)
+      face_of_edge[edge_key(F[3 * f + j], F[3 * f + (j + 1) % 3])] = f;
+  };
+  for(Index f = 0; f < F.size() / 3; ++f)
+    link(f);
+  for(std::size_t k = K; k-- > 0; )
+  {
+    const Pyramid_level& lev = pyr.levels()[k];
+    for(std::size_t q = 0; q < lev.odd_rows.size(); ++q)
+    {
+      const Index o = lev.vertices[lev.odd_rows[q]];
+      if(!keep[o])
+        continue;
+      const Index e = h.target_of[o];
+      for(Index i = h.star_offsets[k][q]; i < h.star_offsets[k][q + 1]; i += 3)
+      {
+        const Index* t = h.star[k].data() + i;
+        const int c = (t[0] == o) ? 0 : ((t[1] == o) ? 1 : 2);
+        const Index a = t[(c + 1) % 3], b = t[(c + 2) % 3];
+        if(a == e || b == e)
+        {
+          F.insert(F.end(), t, t + 3);                        // a face removed by the collapse: back in
+          link(static_cast<Index>(F.size() / 3 - 1));
+          continue;
+        }
+        const auto it = face_of_edge.find(edge_key(a, b));   // the face (e, a, b) becomes (o, a, b)
+        if(it == face_of_edge.end())
+          throw std::runtime_error("reconstruct_adaptively: inconsistent pyramid (a vertex split finds no face to split)");
+        const Index f = it->second;
+        for(int j = 0; j < 3; ++j)
+          if(F[3 * f + j] == e) F[3 * f + j] = o;
+        face_of_edge.erase(edge_key(e, a));
+        face_of_edge.erase(edge_key(b, e));
+        link(f);
+      }
+    }
+  }
+  return F;
+}
 
 } // namespace internal
 
@@ -154,114 +275,31 @@ double reconstruct_adaptively(const Pyramid<TriangleMesh>& pyr, OutputMesh& out,
   const std::size_t guide = choose_parameter(get_parameter(np, internal_np::channel), std::size_t(0));
   if(guide >= pyr.number_of_channels())
     throw std::invalid_argument("reconstruct_adaptively: channel " + std::to_string(guide) + " does not exist");
-  const std::size_t K = pyr.number_of_levels();
 
-  // importance of every odd vertex: its detail length in the guide (and the scaled geometry)
-  auto detail_length = [&](std::size_t j, std::size_t c, Index row) {
-    const std::size_t dim = pyr.channel_dimension(c);
-    const double* d = pyr.details(j, c).data() + std::size_t(row) * dim;
-    double s = 0.;
-    for(std::size_t k = 0; k < dim; ++k) s += d[k] * d[k];
-    return std::sqrt(s);
-  };
-  double geometry_scale = 0.;
-  if(guide != 0 && K > 0)
-  {
-    std::vector<double> lg, lc;
-    for(Index r = 0; r < pyr.number_of_vertices(0); ++r) { lg.push_back(detail_length(1, 0, r)); lc.push_back(detail_length(1, guide, r)); }
-    std::nth_element(lg.begin(), lg.begin() + lg.size() / 2, lg.end());
-    std::nth_element(lc.begin(), lc.begin() + lc.size() / 2, lc.end());
-    geometry_scale = lg[lg.size() / 2] > 0. ? lc[lc.size() / 2] / lg[lg.size() / 2] : 0.;
-  }
-  std::vector<std::vector<double> > importance(K);
-  std::vector<double> all;
-  for(std::size_t k = 0; k < K; ++k)
-    for(Index r : pyr.levels()[k].odd_rows)
-    {
-      double x = detail_length(k + 1, guide, r);
-      if(guide != 0) x = (std::max)(x, geometry_scale * detail_length(k + 1, 0, r));
-      importance[k].push_back(x);
-      all.push_back(x);
-    }
-
+  // importance, budget search, dependency closure, vertex splits, values
+  const std::vector<std::vector<double> > importance = internal::odd_vertex_importance(pyr, guide);
   internal::Adaptive_hierarchy h;
   internal::build_adaptive_hierarchy(pyr, h);
   const auto target = get_parameter(np, internal_np::target_number_of_vertices);
   if constexpr(!std::is_same<std::decay_t<decltype(target)>, CGAL::internal_np::Param_not_found>::value)
-  {
-    // the smallest threshold whose closure fits: the closure shrinks as the threshold grows
-    std::sort(all.begin(), all.end());
-    all.erase(std::unique(all.begin(), all.end()), all.end());
-    all.push_back(std::numeric_limits<double>::infinity());
-    auto count = [&](double t) {
-      const auto keep = internal::dependency_closure(pyr, h, importance, t);
-      return std::size_t(std::count(keep.begin(), keep.end(), 1));
-    };
-    std::size_t lo = 0, hi = all.size() - 1;                 // count(all[hi]) is the coarsest mesh
-    while(lo < hi)
-    {
-      const std::size_t mid = (lo + hi) / 2;
-      if(count(all[mid]) <= std::size_t(target)) hi = mid; else lo = mid + 1;
-    }
-    threshold = all[lo];
-  }
+    threshold = internal::threshold_for_budget(pyr, h, importance, std::size_t(target));
   const std::vector<unsigned char> keep = internal::dependency_closure(pyr, h, importance, threshold);
-
-  // vertex splits of the kept odd vertices, coarse to fine, on a face list indexed by edges
-  std::vector<Index> F = pyr.coarse_faces();
-  std::unordered_map<std::uint64_t, Index> face_of_edge;
-  face_of_edge.reserve(3 * F.size());
-  for(Index f = 0; f < F.size() / 3; ++f)
-    for(int i = 0; i < 3; ++i)
-      face_of_edge[internal::edge_key(F[3 * f + i], F[3 * f + (i + 1) % 3])] = f;
-  for(std::size_t k = K; k-- > 0; )
-  {
-    const internal::Pyramid_level& lev = pyr.levels()[k];
-    for(std::size_t q = 0; q < lev.odd_rows.size(); ++q)
-    {
-      const Index o = lev.vertices[lev.odd_rows[q]];
-      if(!keep[o])
-        continue;
-      const Index e = h.target_of[o];
-      for(Index i = h.star_offsets[k][q]; i < h.star_offsets[k][q + 1]; i += 3)
-      {
-        const Index* t = h.star[k].data() + i;
-        const int c = (t[0] == o) ? 0 : ((t[1] == o) ? 1 : 2);
-        const Index a = t[(c + 1) % 3], b = t[(c + 2) % 3];
-        if(a == e || b == e)
-        {
-          // a face removed by the collapse: back in
-          const Index f = static_cast<Index>(F.size() / 3);
-          F.insert(F.end(), t, t + 3);
-          for(int j = 0; j < 3; ++j)
-            face_of_edge[internal::edge_key(t[j], t[(j + 1) % 3])] = f;
-        }
-        else
-        {
-          // the face (e, a, b) of the coarser mesh becomes (o, a, b)
-          const auto it = face_of_edge.find(internal::edge_key(a, b));
-          CGAL_assertion(it != face_of_edge.end());
-          const Index f = it->second;
-          for(int j = 0; j < 3; ++j)
-            if(F[3 * f + j] == e) F[3 * f + j] = o;
-          face_of_edge.erase(internal::edge_key(e, a));
-          face_of_edge.erase(internal::edge_key(b, e));
-          face_of_edge[internal::edge_key(o, a)] = f;
-          face_of_edge[internal::edge_key(b, o)] = f;
-        }
-      }
-    }
-  }
-
-  // exact values of the kept vertices: those of the full reconstruction
-  std::vector<Index> verts;
+  std::vector<Index> F = internal::adaptive_faces(pyr, h, keep);
+  std::vector<Index> verts, row_of(keep.size(), internal::invalid_index);
   for(Index g = 0; g < keep.size(); ++g)
-    if(keep[g]) verts.push_back(g);
+    if(keep[g])
+    {
+      row_of[g] = static_cast<Index>(verts.size());
+      verts.push_back(g);
+    }
+  for(Index& g : F)
+    g = row_of[g];
+  // exact values of the kept vertices: those of the full reconstruction
   internal::write_output_mesh(pyr, verts, [&](std::vector<Index>& faces) { faces.swap(F); },
                               [&](std::vector<std::vector<double> >& values) {
                                 std::vector<Index> no_faces;
-                                internal::reconstruct_arrays(pyr, 0, values, no_faces, false);   // values only: the faces are built above
-                                for(std::size_t c = 0; c < values.size(); ++c)   // level 0's rows are the global numbers: keep those of verts
+                                internal::reconstruct_arrays(pyr, 0, values, no_faces, false);   // values only
+                                for(std::size_t c = 0; c < values.size(); ++c)   // level 0's rows are the input numbers
                                 {
                                   const std::size_t dim = pyr.dimensions()[c];
                                   for(std::size_t r = 0; r < verts.size(); ++r)

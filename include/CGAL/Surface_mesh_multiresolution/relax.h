@@ -65,9 +65,11 @@ struct Relaxation_setup
     builder.set_connectivity(mesh.number_of_vertices(), mesh.triangles);
   }
 
+  // the weights on the coordinates brought to a safe range (geometry_scale(): exact, weights unchanged)
   void build(Sparse_weights& w, std::vector<Relaxation_row_rule>& rules)
   {
-    builder.build(scheme, xyz.data(), fixed.data(), w, rules);
+    std::vector<double> scaled;
+    builder.build(scheme, geometry_for_computations(xyz, scaled).data(), fixed.data(), w, rules);
   }
 };
 

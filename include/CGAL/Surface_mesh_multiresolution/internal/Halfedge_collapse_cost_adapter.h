@@ -10,7 +10,7 @@
 
 #include <CGAL/Surface_mesh_multiresolution/internal/config.h>
 #include <CGAL/Surface_mesh_multiresolution/internal/indexed_mesh.h>
-#include <CGAL/Surface_mesh_multiresolution/internal/relaxation_weights.h>
+#include <CGAL/Surface_mesh_multiresolution/internal/Triangle_halfedges.h>
 
 #include <CGAL/boost/graph/copy_face_graph.h>
 #include <CGAL/boost/graph/Euler_operations.h>
@@ -159,7 +159,7 @@ public:
 
   void initialize(const Triangle_halfedges&, const std::vector<double>&) {}
   void begin_level(const std::vector<Index>& rows_to_vertices, const std::vector<double>&) { m_rows = &rows_to_vertices; }
-  void end_level(const std::vector<unsigned char>&) {}
+  void end_level(const std::vector<unsigned char>&) {}   // the working copy collapsed as it went
 
   Optional<double> cost(Index o, Index e) const { return m_adapter->cost(work_halfedge((*m_rows)[o], (*m_rows)[e])); }
 

@@ -10,7 +10,7 @@
 
 #include <CGAL/Surface_mesh_multiresolution/internal/config.h>
 #include <CGAL/Surface_mesh_multiresolution/internal/indexed_mesh.h>
-#include <CGAL/Surface_mesh_multiresolution/internal/relaxation_weights.h>
+#include <CGAL/Surface_mesh_multiresolution/internal/Triangle_halfedges.h>
 
 #include <cmath>
 #include <vector>

@@ -54,7 +54,6 @@ template <typename... Maps>
 struct Channel_tuple<std::tuple<Maps...> >
 {
   static constexpr std::size_t size = sizeof...(Maps);
-  static constexpr std::array<std::size_t, sizeof...(Maps)> dimensions() { return {{Channel_traits<Maps>::dimension...}}; }
   static constexpr std::size_t total_dimension() { return (std::size_t(0) + ... + Channel_traits<Maps>::dimension); }
 };
 

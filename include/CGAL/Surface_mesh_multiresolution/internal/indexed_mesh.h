@@ -9,6 +9,7 @@
 #define CGAL_SURFACE_MESH_MULTIRESOLUTION_INTERNAL_INDEXED_MESH_H
 
 #include <CGAL/Surface_mesh_multiresolution/internal/config.h>
+#include <CGAL/Surface_mesh_multiresolution/internal/helpers.h>
 
 #include <CGAL/boost/graph/iterator.h>
 #include <CGAL/boost/graph/properties.h>
@@ -26,42 +27,6 @@ namespace CGAL {
 namespace Surface_mesh_multiresolution {
 namespace internal {
 
-constexpr Index invalid_index = (std::numeric_limits<Index>::max)();
-
-// out = a x b, for points and vectors stored as 3 doubles
-inline void cross(const double* a, const double* b, double* out)
-{
-  out[0] = a[1] * b[2] - a[2] * b[1];
-  out[1] = a[2] * b[0] - a[0] * b[2];
-  out[2] = a[0] * b[1] - a[1] * b[0];
-}
-
-// out = (q - p) x (r - p): twice the area vector of the triangle (p, q, r)
-inline void cross_of_differences(const double* q, const double* r, const double* p, double* out)
-{
-  const double u[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]};
-  const double v[3] = {r[0] - p[0], r[1] - p[1], r[2] - p[2]};
-  cross(u, v, out);
-}
-
-// Copies the dim values of one vertex (or the 3 corners of one face). Why not std::copy: for
-// a few values per vertex it becomes a call to memmove per vertex, 6 % of a decomposition.
-template <typename T>
-inline void copy_values(const T* from, std::size_t dim, T* to)
-{
-  if(dim == 3)
-  {
-    to[0] = from[0]; to[1] = from[1]; to[2] = from[2];
-    return;
-  }
-  for(std::size_t c = 0; c < dim; ++c)
-    to[c] = from[c];
-}
-
-// The index view of a triangle mesh used by every hot loop of the package: vertices are
-// numbered 0..n-1 in the order of `vertices(tm)` ("rows"), faces are triples of rows in the
-// order and orientation of `faces(tm)`. Building it is the only halfedge traversal of a
-// relaxation; it also validates the input (DESIGN.md, section 4).
 template <typename TriangleMesh>
 struct Indexed_mesh
 {

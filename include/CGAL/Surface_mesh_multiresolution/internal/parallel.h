@@ -18,7 +18,6 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_group.h>
-#include <tbb/parallel_sort.h>
 #endif
 
 namespace CGAL {
@@ -65,16 +64,6 @@ void parallel_for_blocks(std::size_t n, const F& f, std::size_t grain = 8192)
 
 // Sorts [first, last) by `compare`, in parallel with TBB when it is linked. Callers sort by
 // a total order (keys all different), so the result does not depend on the threads.
-template <typename RandomIt, typename Compare>
-void parallel_sort(RandomIt first, RandomIt last, const Compare& compare)
-{
-#ifdef CGAL_LINKED_WITH_TBB
-  tbb::parallel_sort(first, last, compare);
-#else
-  std::sort(first, last, compare);
-#endif
-}
-
 } // namespace internal
 } // namespace Surface_mesh_multiresolution
 } // namespace CGAL

@@ -9,15 +9,16 @@
 #define CGAL_SURFACE_MESH_MULTIRESOLUTION_INTERNAL_RELAXATION_WEIGHTS_H
 
 #include <CGAL/Surface_mesh_multiresolution/internal/config.h>
-#include <CGAL/Surface_mesh_multiresolution/internal/indexed_mesh.h>
+#include <CGAL/Surface_mesh_multiresolution/internal/helpers.h>
+#include <CGAL/Surface_mesh_multiresolution/internal/Triangle_halfedges.h>
 #include <CGAL/Surface_mesh_multiresolution/internal/parallel.h>
 #include <CGAL/Surface_mesh_multiresolution/internal/Sparse_weights.h>
+#include <CGAL/Surface_mesh_multiresolution/Relaxation_row_rule.h>
 #include <CGAL/Surface_mesh_multiresolution/Relaxation_scheme.h>
 
 #include <CGAL/assertions.h>
 
 #include <algorithm>
-#include <atomic>
 #include <array>
 #include <cmath>
 #include <stdexcept>
@@ -26,192 +27,7 @@
 namespace CGAL {
 namespace Surface_mesh_multiresolution {
 
-/*!
- * \ingroup PkgSurfaceMeshMultiresolutionRef
- * says which rule produced the weights of one vertex (one row of a relaxation operator);
- * see the user manual, section "Robustness rules".
- */
-enum class Relaxation_row_rule : unsigned char
-{
-  /// the weights of the chosen scheme (Eq. 1, Eq. 2 or the uniform Laplacian)
-  SCHEME,
-  /// curvature scheme whose negative cotangent weights outweighed the positive ones: negative weights dropped
-  CLAMPED_CURVATURE,
-  /// second-order-difference scheme without a usable hinge, or ill-conditioned: curvature weights used instead
-  CURVATURE_FALLBACK,
-  /// no usable weight at all (degenerate neighbourhood): uniform weights over the neighbours
-  UNIFORM_FALLBACK,
-  /// border vertex: relaxed along the border curve only
-  BORDER,
-  /// constrained or isolated vertex: \f$ R f(v_i) = f(v_i) \f$
-  FIXED
-};
-
 namespace internal {
-
-// Index-based halfedge structure of a triangle mesh, built from its triangle array alone
-// (no walk on the mesh): halfedge 3f+k goes from corner k to corner k+1 of face f; the
-// halfedges of border edges that have no face are numbered after them. The outgoing
-// halfedges of every vertex are listed in CSR (in face order, so deterministic), with
-// their targets: the 1-ring of each vertex.
-// Why by hand: the weights of every level of a pyramid need twins, next and 1-rings on
-// contiguous arrays; walking a FaceGraph's halfedges (or a hash of edges) is several times
-// slower than this counting sort.
-struct Triangle_halfedges
-{
-  std::size_t n = 0, nf = 0;
-  std::vector<Index> source, target, twin;     // per halfedge
-  // outgoing halfedges of each vertex (face halfedges, then border ones): out[k] for
-  // out_offsets[v] <= k < out_offsets[v + 1], with their targets and the third vertex of their
-  // face (invalid_index for a border halfedge; only when built `with_apexes`), so that a
-  // vertex's 1-ring and the faces around it are read from three contiguous ranges
-  std::vector<Index> out_offsets, out, out_target, out_apex;
-
-  static Index next_in_face(Index h) { return h % 3 == 2 ? h - 2 : h + 1; }
-  bool has_face(Index h) const { return h < 3 * nf; }
-  bool is_border_edge(Index h) const { return !has_face(h) || !has_face(twin[h]); }
-  // the third vertex of the face of h (h must have a face)
-  Index opposite_vertex(Index h) const { return target[next_in_face(h)]; }
-
-  // \throws std::invalid_argument when the halfedges (up to 6 per face) cannot be numbered by Index
-  void build(std::size_t nv, const std::vector<Index>& tri, bool with_apexes = false)
-  {
-    if(tri.size() / 3 >= std::size_t(invalid_index) / 6)
-      throw std::invalid_argument("the mesh has too many faces (at most (2^32-1)/6 are supported)");
-    n = nv;
-    nf = tri.size() / 3;
-    const Index h0 = static_cast<Index>(3 * nf);
-    // outgoing face halfedges of each vertex (counting sort by source), with their targets
-    out_offsets.assign(n + 1, 0);
-    for(Index h = 0; h < h0; ++h)
-      ++out_offsets[tri[h] + 1];
-    for(std::size_t i = 0; i < n; ++i)
-      out_offsets[i + 1] += out_offsets[i];
-    out.resize(h0);
-    out_target.resize(h0);
-    out_apex.resize(with_apexes ? h0 : 0);
-    {
-      std::vector<Index> fill(out_offsets.begin(), out_offsets.end() - 1);
-      for(Index h = 0; h < h0; ++h)
-      {
-        const Index k = fill[tri[h]]++;
-        out[k] = h;
-        out_target[k] = tri[next_in_face(h)];
-        if(with_apexes)
-          out_apex[k] = tri[next_in_face(next_in_face(h))];
-      }
-    }
-    // twin of a -> b: b's outgoing halfedge towards a. Each edge {a, b} is matched once, by its
-    // smaller end (vertex by vertex, in parallel: the 1-rings searched are those of the
-    // neighbours of consecutive vertices, near in memory for meshes whose vertex order has some
-    // locality), which writes both twins; no two blocks write the same twin. A directed edge
-    // listed twice (or a loop) makes the matching ambiguous (not possible for a valid halfedge
-    // mesh): then the pairing is redone sequentially, first come first served.
-    twin.assign(h0, invalid_index);
-    std::atomic<bool> ambiguous(false);
-    parallel_for_blocks(n, [&](std::size_t first, std::size_t last) {
-      bool repeated = false;
-      for(std::size_t a = first; a < last; ++a)
-        for(Index k = out_offsets[a]; k < out_offsets[a + 1]; ++k)
-        {
-          const Index b = out_target[k];
-          for(Index j = out_offsets[a]; j < k; ++j)
-            repeated = repeated || out_target[j] == b;
-          if(b <= a)
-          {
-            repeated = repeated || b == a;
-            continue;                                // matched from b (or a loop)
-          }
-          for(Index q = out_offsets[b]; q < out_offsets[b + 1]; ++q)
-            if(out_target[q] == a)
-            {
-              twin[out[k]] = out[q];
-              twin[out[q]] = out[k];
-              break;
-            }
-        }
-      if(repeated)
-        ambiguous.store(true, std::memory_order_relaxed);
-    }, 4096);
-    const bool symmetric = !ambiguous.load();
-    std::size_t border_halfedges = 0;
-    if(symmetric)
-      border_halfedges = static_cast<std::size_t>(std::count(twin.begin(), twin.end(), invalid_index));
-    if(!symmetric)
-    {
-      std::fill(twin.begin(), twin.end(), invalid_index);
-      border_halfedges = 0;
-      for(Index h = 0; h < h0; ++h)
-      {
-        if(twin[h] != invalid_index)
-          continue;
-        const Index a = tri[h], b = tri[next_in_face(h)];
-        for(Index k = out_offsets[b]; k < out_offsets[b + 1]; ++k)
-          if(out_target[k] == a && twin[out[k]] == invalid_index)
-          {
-            twin[h] = out[k];
-            twin[out[k]] = h;
-            break;
-          }
-        border_halfedges += (twin[h] == invalid_index) ? 1 : 0;
-      }
-    }
-    const std::size_t nh = h0 + border_halfedges;
-    source.resize(nh);
-    target.resize(nh);
-    parallel_for_blocks(h0, [&](std::size_t first, std::size_t last) {
-      for(std::size_t h = first; h < last; ++h)
-      {
-        source[h] = tri[h];
-        target[h] = tri[next_in_face(static_cast<Index>(h))];
-      }
-    });
-    if(border_halfedges == 0)                        // closed mesh: the rows are the face halfedges
-      return;
-    // border halfedges, numbered after the face halfedges: each vertex's row gets them at its end
-    twin.resize(nh);
-    std::vector<Index> extra(n + 1, 0);
-    for(Index h = 0; h < h0; ++h)
-      if(twin[h] == invalid_index)
-        ++extra[target[h] + 1];                      // target(h) needs a border halfedge towards source(h)
-    std::vector<Index> face_off;
-    face_off.swap(out_offsets);
-    out_offsets.assign(n + 1, 0);
-    for(std::size_t i = 0; i < n; ++i)
-    {
-      extra[i + 1] += extra[i];
-      out_offsets[i + 1] = face_off[i + 1] + extra[i + 1];
-    }
-    std::vector<Index> face_out, face_out_target, face_out_apex;
-    face_out.swap(out);
-    face_out_target.swap(out_target);
-    face_out_apex.swap(out_apex);
-    out.resize(nh);
-    out_target.resize(nh);
-    out_apex.assign(with_apexes ? nh : 0, invalid_index);
-    std::vector<Index> fill(n);
-    for(std::size_t i = 0; i < n; ++i)
-    {
-      std::copy(face_out.begin() + face_off[i], face_out.begin() + face_off[i + 1], out.begin() + out_offsets[i]);
-      std::copy(face_out_target.begin() + face_off[i], face_out_target.begin() + face_off[i + 1], out_target.begin() + out_offsets[i]);
-      if(with_apexes)
-        std::copy(face_out_apex.begin() + face_off[i], face_out_apex.begin() + face_off[i + 1], out_apex.begin() + out_offsets[i]);
-      fill[i] = out_offsets[i] + (face_off[i + 1] - face_off[i]);
-    }
-    Index g = h0;
-    for(Index h = 0; h < h0; ++h)
-      if(twin[h] == invalid_index)
-      {
-        source[g] = target[h];
-        target[g] = source[h];
-        twin[g] = h;
-        twin[h] = g;
-        out_target[fill[source[g]]] = target[g];
-        out[fill[source[g]]++] = g;
-        ++g;
-      }
-  }
-};
 
 // Second-order difference of the hinge of the edge (p1, p2) with the opposite vertices p3
 // (triangle p1 p2 p3) and p4 (triangle p2 p1 p4), Guskov et al. 1999: unfolded isometrically

@@ -1,0 +1,356 @@
+// Copyright (c) 2026  The Surface_mesh_multiresolution authors. All rights reserved.
+//
+// This file is part of Surface_mesh_multiresolution, an add-on package for CGAL.
+//
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s)     : The Surface_mesh_multiresolution authors
+#ifndef CGAL_SURFACE_MESH_MULTIRESOLUTION_INTERNAL_COLLAPSE_SELECTION_H
+#define CGAL_SURFACE_MESH_MULTIRESOLUTION_INTERNAL_COLLAPSE_SELECTION_H
+
+#include <CGAL/Surface_mesh_multiresolution/internal/config.h>
+#include <CGAL/Surface_mesh_multiresolution/internal/helpers.h>
+#include <CGAL/Surface_mesh_multiresolution/internal/parallel.h>
+#include <CGAL/Surface_mesh_multiresolution/internal/Triangle_halfedges.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+#include <utility>
+#include <vector>
+
+namespace CGAL {
+namespace Surface_mesh_multiresolution {
+namespace internal {
+
+// The selection of one level's half-edge collapses on index arrays (Section 3.1): the
+// candidates in cost order, the link condition, the flip test and the greedy independent set.
+
+// The link condition of CGAL::Euler::does_satisfy_link_condition() (CGAL 5.5) for the
+// collapse of the edge of halfedge h = o -> e, on index arrays: every common neighbour of its
+// ends is the apex of a face on the edge; no face on the edge has its two other edges on the
+// border (isolated triangle); an interior edge joins no two border vertices, is not an edge of
+// a tetrahedron and does not close a two-face pillow. Reads the 1-rings of o and e (contiguous)
+// and twin(h); other twins only for edges between border vertices.
+inline bool satisfies_link_condition(const Triangle_halfedges& th, Index h, Index o, Index e,
+                                     const std::vector<unsigned char>& on_border)
+{
+  typedef Triangle_halfedges T;
+  const Index t = th.twin[h];
+  const Index o_begin = th.out_offsets[o], o_end = th.out_offsets[o + 1];
+  const Index e_begin = th.out_offsets[e], e_end = th.out_offsets[e + 1];
+  Index apex_top = invalid_index, apex_bottom = invalid_index;     // invalid: no face on that side
+  for(Index k = o_begin; k != o_end; ++k)
+    if(th.out[k] == h) { apex_top = th.out_apex[k]; break; }
+  for(Index k = e_begin; k != e_end; ++k)
+    if(th.out[k] == t) { apex_bottom = th.out_apex[k]; break; }
+  const bool top = apex_top != invalid_index, bottom = apex_bottom != invalid_index;
+  const Index* const e_first = th.out_target.data() + e_begin;
+  const Index* const e_last = th.out_target.data() + e_end;
+  for(Index k = o_begin; k != o_end; ++k)                // the 1-rings are short: a double loop beats any set
+  {
+    const Index c = th.out_target[k];
+    if(c != e && c != apex_top && c != apex_bottom && std::find(e_first, e_last, c) != e_last)
+      return false;
+  }
+  // a border edge joins two border vertices: the flags spare most twin lookups
+  auto border_edge = [&](Index g, Index from, Index to) { return on_border[from] && on_border[to] && th.is_border_edge(g); };
+  if(top && border_edge(T::next_in_face(h), e, apex_top) && border_edge(T::next_in_face(T::next_in_face(h)), apex_top, o))
+    return false;
+  if(bottom && border_edge(T::next_in_face(t), o, apex_bottom) && border_edge(T::next_in_face(T::next_in_face(t)), apex_bottom, e))
+    return false;
+  if(top && bottom)
+  {
+    if(on_border[o] && on_border[e])
+      return false;
+    // two interior vertices of valence 3 on an interior edge: a closed tetrahedron (the 1-ring
+    // of each is a triangle whose edges all carry two faces)
+    if(!on_border[o] && !on_border[e] && o_end - o_begin == 3 && e_end - e_begin == 3)
+      return false;
+    if(apex_top == apex_bottom)
+      return false;
+  }
+  return true;
+}
+
+// Whether moving o onto e (the ends of a halfedge) turns a face around (or makes it
+// degenerate): the faces at o that survive must keep the orientation of their normal.
+inline bool does_collapse_flip_a_face(const Triangle_halfedges& th, Index o, Index e, const double* xyz)
+{
+  const double* po = xyz + 3 * std::size_t(o);
+  const double* pe = xyz + 3 * std::size_t(e);
+  for(Index k = th.out_offsets[o]; k < th.out_offsets[o + 1]; ++k)
+  {
+    const Index a = th.out_target[k], b = th.out_apex[k];  // face (o, a, b)
+    if(b == invalid_index || a == e || b == e)
+      continue;                                           // no face, or a face that disappears
+    const double* pa = xyz + 3 * std::size_t(a);
+    const double* pb = xyz + 3 * std::size_t(b);
+    double before[3], after[3];
+    cross_of_differences(pa, pb, po, before);
+    cross_of_differences(pa, pb, pe, after);
+    if(!(before[0] * after[0] + before[1] * after[1] + before[2] * after[2] > 0))
+      return true;
+  }
+  return false;
+}
+
+// An accepted half-edge collapse o -> e, in the rows of its level.
+struct Collapse { Index o, e; };
+
+// A candidate collapse in 8 bytes: the leading `cost_bits` bits of the order-preserving
+// integer image of its cost (sign, exponent, mantissa), then its halfedge in the low
+// `halfedge_bits` bits, as few as the level's halfedge numbers need. With 40 cost bits (28 of
+// mantissa) two different costs rarely share a key; with the former fixed split (20 bits of
+// mantissa) 15 % of the dragon's candidates did, and ordering them by their recomputed costs
+// took 16 % of its decomposition. cost a < cost b implies cost_part(key(a)) <= cost_part(key(b)).
+class Candidate_key
+{
+public:
+  explicit Candidate_key(std::size_t number_of_halfedges)
+  {
+    while(m_halfedge_bits < 32 && (std::uint64_t(1) << m_halfedge_bits) < number_of_halfedges)
+      ++m_halfedge_bits;
+    m_cost_bits = (std::min)(40, 64 - m_halfedge_bits);
+  }
+  std::uint64_t operator()(double cost, Index h) const
+  {
+    cost += 0.;                                             // -0 -> +0: equal costs, equal keys
+    std::uint64_t b;
+    std::memcpy(&b, &cost, sizeof b);
+    b = (b >> 63) ? ~b : (b | (std::uint64_t(1) << 63));
+    return ((b >> (64 - m_cost_bits)) << m_halfedge_bits) | h;
+  }
+  Index halfedge(std::uint64_t key) const { return static_cast<Index>(key & ((std::uint64_t(1) << m_halfedge_bits) - 1)); }
+  std::uint64_t cost_part(std::uint64_t key) const { return key >> m_halfedge_bits; }
+  int halfedge_bits() const { return m_halfedge_bits; }
+  int cost_bits() const { return m_cost_bits; }
+
+private:
+  int m_halfedge_bits = 0, m_cost_bits = 40;
+};
+
+// Sorts candidate keys (any input order) by increasing cost, equal costs in increasing
+// halfedge; cost(h) gives the cost of halfedge h again (the same double: it is a
+// deterministic function). Why by hand: a comparison sort of the 6n candidates was the largest
+// part of the decomposition (16 % of the dragon's), and candidates holding their costs took 16
+// bytes each. This is a stable LSD radix sort on the cost bits of the keys (passes of 10 bits,
+// a pass skipped when all candidates share its digit), then a comparison sort by the exact
+// costs and halfedges inside each run of equal cost bits (rare), which makes the order total
+// whatever the input order. Deterministic: the same order for any number of threads.
+template <typename CostOfHalfedge>
+void sort_candidates(std::vector<std::uint64_t>& c, const Candidate_key& key, const CostOfHalfedge& cost)
+{
+  const std::size_t n = c.size();
+  constexpr int digit_bits = 10;
+  constexpr std::size_t buckets = std::size_t(1) << digit_bits;
+  constexpr std::uint64_t mask = buckets - 1;
+  const int digits = (key.cost_bits() + digit_bits - 1) / digit_bits;
+  // each pass is a stable counting sort, split into fixed blocks of candidates: a block counts
+  // its digits, then writes its candidates after those of the smaller digits and of the same
+  // digit in the blocks before it. A stable sort has one result, whatever the blocks and threads.
+  constexpr std::size_t block = std::size_t(1) << 16;
+  const std::size_t blocks = (n + block - 1) / block;
+  std::vector<std::size_t> count(blocks * buckets);
+  std::vector<std::uint64_t> scratch(n);
+  std::uint64_t* from = c.data();
+  std::uint64_t* to = scratch.data();
+  for(int d = 0; d < digits; ++d)
+  {
+    const int shift = key.halfedge_bits() + d * digit_bits;
+    parallel_for_blocks(blocks, [&](std::size_t first, std::size_t last) {
+      for(std::size_t b = first; b < last; ++b)
+      {
+        std::size_t* hist = count.data() + b * buckets;
+        std::fill(hist, hist + buckets, std::size_t(0));
+        for(std::size_t i = b * block; i < (std::min)(n, (b + 1) * block); ++i)
+          ++hist[(from[i] >> shift) & mask];
+      }
+    }, 1);
+    std::size_t sum = 0;
+    bool one_digit = false;
+    for(std::size_t v = 0; v < buckets && !one_digit; ++v)
+    {
+      std::size_t total = 0;
+      for(std::size_t b = 0; b < blocks; ++b)
+        total += count[b * buckets + v];
+      one_digit = (total == n);
+      for(std::size_t b = 0; b < blocks; ++b)
+      {
+        const std::size_t t = count[b * buckets + v];
+        count[b * buckets + v] = sum;
+        sum += t;
+      }
+    }
+    if(one_digit)
+      continue;                                           // one digit for all: nothing to do
+    parallel_for_blocks(blocks, [&](std::size_t first, std::size_t last) {
+      for(std::size_t b = first; b < last; ++b)
+      {
+        std::size_t* pos = count.data() + b * buckets;
+        for(std::size_t i = b * block; i < (std::min)(n, (b + 1) * block); ++i)
+          to[pos[(from[i] >> shift) & mask]++] = from[i];
+      }
+    }, 1);
+    std::swap(from, to);
+  }
+  if(from != c.data())
+    std::copy(from, from + n, c.data());
+  scratch = std::vector<std::uint64_t>();
+  std::vector<std::pair<double, Index> > run;
+  for(std::size_t i = 0; i < n;)
+  {
+    std::size_t j = i + 1;
+    while(j < n && key.cost_part(c[j]) == key.cost_part(c[i]))
+      ++j;
+    if(j - i > 1)
+    {
+      run.clear();
+      for(std::size_t q = i; q < j; ++q)
+      {
+        const Index h = key.halfedge(c[q]);
+        run.emplace_back(cost(h), h);
+      }
+      std::sort(run.begin(), run.end());                  // (cost, h): equal costs keep increasing h
+      for(std::size_t q = i; q < j; ++q)
+        c[q] = (key.cost_part(c[q]) << key.halfedge_bits()) | run[q - i].second;
+    }
+    i = j;
+  }
+}
+
+// The selection loop of select_collapses(): candidates in order, each accepted if its ends are
+// free and its collapse valid.
+inline void take_greedily(const Triangle_halfedges& th, const double* xyz, const std::vector<std::uint64_t>& candidates,
+                          const Candidate_key& key, std::size_t budget, const std::vector<unsigned char>& on_border,
+                          std::vector<unsigned char>& locked, std::vector<Collapse>& accepted)
+{
+  // The candidates come in cost order, that is at random places of the level's arrays: on a
+  // mesh larger than the cache each test waits for a dozen misses. Why by hand: the loop keeps
+  // a window of the next candidates whose ends were free when first seen and prefetches, in
+  // steps, what their tests read (ring offsets and twin, then the rings, then o's neighbours'
+  // positions), so that these misses overlap with the decisions before them. The decisions are
+  // those of the plain loop: only cache hints are added, every candidate is checked again when
+  // its turn comes.
+  struct Pending { Index h, o, e; };
+  constexpr std::size_t window = 16, ring_step = window / 2, position_step = 3, gather_ahead = 32;
+  Pending pending[window];
+  std::size_t head = 0, count = 0, scan = 0;
+  const std::size_t nc = candidates.size();
+  auto prefetch_ring = [&](Index v) {
+    prefetch(th.out.data() + th.out_offsets[v]);
+    prefetch(th.out_target.data() + th.out_offsets[v]);
+    prefetch(th.out_apex.data() + th.out_offsets[v]);
+  };
+  while(accepted.size() < budget)
+  {
+    // refill the window with candidates whose ends are free now
+    while(count < window && scan < nc)
+    {
+      if(scan + gather_ahead < nc)
+      {
+        const Index later = key.halfedge(candidates[scan + gather_ahead]);
+        prefetch(th.source.data() + later);
+        prefetch(th.target.data() + later);
+      }
+      const Index h = key.halfedge(candidates[scan++]), o = th.source[h], e = th.target[h];
+      if(locked[o] || locked[e])
+        continue;
+      pending[(head + count++) % window] = Pending{h, o, e};
+      prefetch(th.out_offsets.data() + o);
+      prefetch(th.out_offsets.data() + e);
+      prefetch(th.twin.data() + h);
+    }
+    if(count == 0)
+      break;
+    if(count > ring_step)
+    {
+      const Pending& p = pending[(head + ring_step) % window];
+      prefetch_ring(p.o);
+      prefetch_ring(p.e);
+    }
+    if(count > position_step)
+    {
+      const Pending& p = pending[(head + position_step) % window];
+      prefetch(xyz + 3 * std::size_t(p.o));
+      for(Index k = th.out_offsets[p.o]; k < th.out_offsets[p.o + 1]; ++k)
+        prefetch(xyz + 3 * std::size_t(th.out_target[k]));
+    }
+    const Pending c = pending[head];
+    head = (head + 1) % window;
+    --count;
+    if(locked[c.o] || locked[c.e])
+      continue;
+    if(!satisfies_link_condition(th, c.h, c.o, c.e, on_border) || does_collapse_flip_a_face(th, c.o, c.e, xyz))
+      continue;
+    locked[c.o] = 1;
+    for(Index k = th.out_offsets[c.o]; k < th.out_offsets[c.o + 1]; ++k)
+      locked[th.out_target[k]] = 1;
+    accepted.push_back(Collapse{c.o, c.e});
+  }
+}
+
+
+// The candidate collapses of one level, sorted: every halfedge o -> e of M_k, except those
+// that would move a border vertex off the border and those the cost model refuses, in
+// increasing cost (ties: halfedge number, so the order is total and the result does not depend
+// on threads). Keys computed in parallel (TBB), vertex by vertex (the quadric and position of
+// o are read once for its 1-ring, those of its neighbours are near in memory), each into its
+// own slot. on_border: one flag per row, set here.
+template <typename CostOfRows>
+std::vector<std::uint64_t> sorted_candidates(const Triangle_halfedges& th, const CostOfRows& cost,
+                                             std::vector<unsigned char>& on_border, Candidate_key& key)
+{
+  const Index nh = static_cast<Index>(th.source.size());
+  on_border.assign(th.n, 0);
+  for(Index h = static_cast<Index>(3 * th.nf); h < nh; ++h)   // the border halfedges come last
+    on_border[th.source[h]] = on_border[th.target[h]] = 1;
+  // the cost of a candidate halfedge, NaN for a refused collapse
+  auto cost_of_edge = [&](Index h, Index o, Index e) {
+    if(on_border[o] && !th.is_border_edge(h))               // border vertices move along the border only
+      return std::numeric_limits<double>::quiet_NaN();
+    const Optional<double> oc = cost(o, e);
+    return oc ? *oc : std::numeric_limits<double>::quiet_NaN();
+  };
+  key = Candidate_key(nh);
+  constexpr std::uint64_t refused = ~std::uint64_t(0);     // no key: its cost bits would be a NaN's
+  std::vector<std::uint64_t> candidates(nh);
+  parallel_for_blocks(th.n, [&](std::size_t first, std::size_t last) {
+    for(std::size_t o = first; o < last; ++o)
+      for(Index k = th.out_offsets[o]; k < th.out_offsets[o + 1]; ++k)
+      {
+        const Index h = th.out[k];
+        const double c = cost_of_edge(h, static_cast<Index>(o), th.out_target[k]);
+        candidates[k] = std::isnan(c) ? refused : key(c, h);
+      }
+  }, 1024);
+  candidates.erase(std::remove(candidates.begin(), candidates.end(), refused), candidates.end());
+  sort_candidates(candidates, key, [&](Index h) { return cost_of_edge(h, th.source[h], th.target[h]); });
+  return candidates;
+}
+
+// The greedy independent set of half-edge collapses of one level (Section 3.1): the
+// candidates of sorted_candidates() are taken in order; a candidate is accepted when both ends
+// are free, the link condition holds and no face flips, and then o and its 1-ring are locked.
+// Since accepted collapses have disjoint closed 1-rings around o and lock e, all tests can be
+// made on M_k: no collapse changes the 1-ring of another. `cost(o, e)` takes rows; xyz: 3
+// doubles per row. The candidates live only here, so the temporary memory of a level follows
+// its size. At most `budget` collapses are accepted.
+template <typename CostOfRows>
+void select_collapses(const Triangle_halfedges& th, const double* xyz, const CostOfRows& cost, std::size_t budget,
+                      std::vector<unsigned char>& on_border, std::vector<unsigned char>& locked, std::vector<Collapse>& accepted)
+{
+  Candidate_key key(0);
+  const std::vector<std::uint64_t> candidates = sorted_candidates(th, cost, on_border, key);
+  locked.assign(th.n, 0);
+  accepted.clear();
+  take_greedily(th, xyz, candidates, key, budget, on_border, locked, accepted);
+}
+
+} // namespace internal
+} // namespace Surface_mesh_multiresolution
+} // namespace CGAL
+
+#endif // CGAL_SURFACE_MESH_MULTIRESOLUTION_INTERNAL_COLLAPSE_SELECTION_H

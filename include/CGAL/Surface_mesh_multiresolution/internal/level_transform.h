@@ -1,0 +1,155 @@
+// Copyright (c) 2026  The Surface_mesh_multiresolution authors. All rights reserved.
+//
+// This file is part of Surface_mesh_multiresolution, an add-on package for CGAL.
+//
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s)     : The Surface_mesh_multiresolution authors
+#ifndef CGAL_SURFACE_MESH_MULTIRESOLUTION_INTERNAL_LEVEL_TRANSFORM_H
+#define CGAL_SURFACE_MESH_MULTIRESOLUTION_INTERNAL_LEVEL_TRANSFORM_H
+
+#include <CGAL/Surface_mesh_multiresolution/internal/config.h>
+#include <CGAL/Surface_mesh_multiresolution/internal/helpers.h>
+#include <CGAL/Surface_mesh_multiresolution/internal/parallel.h>
+#include <CGAL/Surface_mesh_multiresolution/internal/Sparse_weights.h>
+#include <CGAL/Surface_mesh_multiresolution/Pyramid.h>
+
+#include <cmath>
+#include <utility>
+#include <vector>
+
+namespace CGAL {
+namespace Surface_mesh_multiresolution {
+namespace internal {
+
+// The analysis (Eq. 5) and synthesis (Eq. 6 and 7) of one level, in the rows of M_k, shared by
+// decompose(), reconstruct(), denoise() and the re-analysis of a pyramid: the bit-exactness
+// contract lives in this file.
+//
+// Odd rows are predicted from a state where each odd vertex holds the value of the vertex it
+// collapses into (known on M_{k+1}), even rows from the original values (Eq. 6 and 7; with the
+// curvature and uniform schemes an odd row only involves even vertices, so this is exactly
+// Eq. 5). The synthesis computes the same predictions from the same values, so
+// v = p + d (+ correction) gives back f bit for bit:
+// - where fl(p + d) differs from f by rounding, an additive correction f - fl(p + d) is stored;
+// - a prediction that is not finite (weights applied to values near the largest double) is
+//   taken as 0 on both sides, and a detail f - p that would overflow is stored as -p (so that
+//   p + d = 0) with f as its correction: every finite input comes back exactly.
+
+typedef std::vector<std::pair<Index, double> > Corrections;
+
+inline double usable_prediction(double p) { return std::isfinite(p) ? p : 0.; }
+
+// the odd rows of `state` (rows of M_k) receive the values of their collapse targets
+inline void odd_values_from_targets(const Pyramid_level& lev, std::size_t dim, double* state)
+{
+  for(std::size_t q = 0; q < lev.odd_rows.size(); ++q)
+    copy_values(state + std::size_t(lev.collapse_targets[q]) * dim, dim, state + std::size_t(lev.odd_rows[q]) * dim);
+}
+
+// the state synthesis starts from: the values of M_{k+1} (`coarse`, its rows) at the even rows
+// of M_k, and at each odd row the value of its collapse target
+inline void spread_to_level(const Pyramid_level& lev, std::size_t dim, const double* coarse, std::vector<double>& state)
+{
+  state.resize(lev.number_of_rows() * dim);
+  for(std::size_t j = 0; j < lev.even_rows.size(); ++j)
+    copy_values(coarse + j * dim, dim, state.data() + std::size_t(lev.even_rows[j]) * dim);
+  odd_values_from_targets(lev, dim, state.data());
+}
+
+// the values of M_{k+1} (rows) from those of M_k: even vertices keep their values
+template <typename T>
+void values_of_next_level(const Pyramid_level& lev, std::size_t dim, const std::vector<T>& f, std::vector<T>& next)
+{
+  next.resize(lev.even_rows.size() * dim);
+  for(std::size_t j = 0; j < lev.even_rows.size(); ++j)
+    copy_values(f.data() + std::size_t(lev.even_rows[j]) * dim, dim, next.data() + j * dim);
+}
+
+// Eq. 5: the details and corrections of one channel (f: rows of M_k) with the weights w
+inline void analyse_level(const Pyramid_level& lev, const Sparse_weights& w, std::size_t dim, const std::vector<double>& f,
+                          std::vector<double>& details, Corrections& corrections)
+{
+  const std::size_t n = lev.number_of_rows() * dim;
+  std::vector<double> state(f), prediction(n);
+  odd_values_from_targets(lev, dim, state.data());
+  w.apply_row_list(state.data(), prediction.data(), dim, lev.odd_rows.data(), lev.odd_rows.size());
+  w.apply_row_list(f.data(), prediction.data(), dim, lev.even_rows.data(), lev.even_rows.size());
+  details.resize(n);
+  corrections.clear();
+  for(std::size_t k = 0; k < n; ++k)
+  {
+    const double p = usable_prediction(prediction[k]);
+    double d = f[k] - p;
+    if(!std::isfinite(d))
+      d = -p;
+    details[k] = d;
+    const double t = p + d;
+    if(t != f[k])
+      corrections.emplace_back(static_cast<Index>(k), f[k] - t);
+  }
+}
+
+inline void odd_row_flags(const Pyramid_level& lev, std::vector<unsigned char>& is_odd)
+{
+  is_odd.assign(lev.number_of_rows(), 0);
+  for(Index r : lev.odd_rows)
+    is_odd[r] = 1;
+}
+
+// Eq. 6 then Eq. 7 on the rows of M_k with the weights w: `state` comes from spread_to_level();
+// on return, the values of M_k. is_odd: odd_row_flags() of the level.
+inline void synthesize_level(const Pyramid_level& lev, const Sparse_weights& w, std::size_t dim, const double* d,
+                             const Corrections& corrections, const std::vector<unsigned char>& is_odd,
+                             std::vector<double>& state, std::vector<double>& prediction)
+{
+  prediction.resize(state.size());
+  // Eq. 6: odd vertices (corrected before the even vertices read them)
+  w.apply_row_list(state.data(), prediction.data(), dim, lev.odd_rows.data(), lev.odd_rows.size());
+  for(Index r : lev.odd_rows)
+    for(std::size_t i = r * dim; i < (r + 1) * dim; ++i)
+      state[i] = usable_prediction(prediction[i]) + d[i];
+  for(const auto& cr : corrections)
+    if(is_odd[cr.first / dim])
+      state[cr.first] = state[cr.first] + cr.second;
+  // Eq. 7: even vertices, from the intermediate mesh
+  w.apply_row_list(state.data(), prediction.data(), dim, lev.even_rows.data(), lev.even_rows.size());
+  for(Index r : lev.even_rows)
+    for(std::size_t i = r * dim; i < (r + 1) * dim; ++i)
+      state[i] = usable_prediction(prediction[i]) + d[i];
+  for(const auto& cr : corrections)
+    if(!is_odd[cr.first / dim])
+      state[cr.first] = state[cr.first] + cr.second;
+}
+
+// The face array of M_k (rows of M_k) from the one of M_{k+1} (rows of M_{k+1}): rows
+// renumbered, removed faces back at their places, odd vertices back at their corners (vertex
+// splits on arrays). In place: merged from the end, a kept face only moves towards the end.
+inline void expand_faces(const Pyramid_level& lev, std::vector<Index>& F)
+{
+  parallel_for_blocks(F.size(), [&](std::size_t first, std::size_t last) {
+    for(std::size_t i = first; i < last; ++i)
+      F[i] = lev.even_rows[F[i]];
+  });
+  std::size_t from = F.size() / 3, next_removed = lev.removed_face_positions.size();
+  const std::size_t nf = from + next_removed;
+  F.resize(3 * nf);
+  for(std::size_t p = nf; next_removed > 0 && p-- > 0; )
+  {
+    if(lev.removed_face_positions[next_removed - 1] == p)
+    {
+      --next_removed;
+      copy_values(lev.removed_faces.data() + 3 * next_removed, 3, F.data() + 3 * p);
+    }
+    else
+      copy_values(F.data() + 3 * --from, 3, F.data() + 3 * p);
+  }
+  for(std::size_t q = 0; q < lev.renamed_corners.size(); ++q)
+    F[lev.renamed_corners[q]] = lev.renamed_vertices[q];
+}
+
+} // namespace internal
+} // namespace Surface_mesh_multiresolution
+} // namespace CGAL
+
+#endif // CGAL_SURFACE_MESH_MULTIRESOLUTION_INTERNAL_LEVEL_TRANSFORM_H
