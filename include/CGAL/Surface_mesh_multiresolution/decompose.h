@@ -60,12 +60,7 @@ public:
     const std::size_t n0 = m_values[0].size() / 3;
     m_rows_to_vertices.resize(n0);
     std::iota(m_rows_to_vertices.begin(), m_rows_to_vertices.end(), Index(0));
-    m_scale = geometry_scale(m_values[0].data(), m_values[0].size());
-    if(m_scale != 1.)
-    {
-      m_scaled_xyz = m_values[0];
-      for(double& x : m_scaled_xyz) x *= m_scale;
-    }
+    m_scaled = &geometry_for_computations(m_values[0], m_scaled_xyz) != &m_values[0];
   }
 
   void run(std::size_t max_levels, std::size_t min_vertices)
@@ -80,8 +75,8 @@ public:
 private:
   std::vector<Pyramid_level>& levels() { return Pyramid_access::levels(m_pyr); }
   std::size_t rows() const { return m_rows_to_vertices.size(); }
-  // the positions the geometric computations read (scaled into a safe range: geometry_scale())
-  const std::vector<double>& xyz() const { return m_scale == 1. ? m_values[0] : m_scaled_xyz; }
+  // the positions the geometric computations read (scaled into a safe range: geometry_for_computations())
+  const std::vector<double>& xyz() const { return m_scaled ? m_scaled_xyz : m_values[0]; }
 
   bool decompose_level(std::size_t budget)
   {
@@ -165,7 +160,7 @@ private:
       values_of_next_level(level, m_pyr.dimensions()[c], m_values[c], next);
       m_values[c].swap(next);
     }
-    if(m_scale != 1.)
+    if(m_scaled)
     {
       values_of_next_level(level, 3, m_scaled_xyz, next);
       m_scaled_xyz.swap(next);
@@ -186,8 +181,8 @@ private:
   std::vector<std::vector<double> > m_values;   // per channel, rows of M_k
   std::vector<Index> m_faces;                   // the face array of M_k, rows of M_k
   std::vector<Index> m_rows_to_vertices;        // input number of every row of M_k
-  double m_scale = 1.;
-  std::vector<double> m_scaled_xyz;             // positions times m_scale, where it is not 1
+  bool m_scaled = false;                        // whether the positions needed a scale (geometry_for_computations())
+  std::vector<double> m_scaled_xyz;             // the scaled positions, rows of M_k
   CostModel& m_cost;
   Relaxation_scheme m_scheme;
   Visitor& m_visitor;

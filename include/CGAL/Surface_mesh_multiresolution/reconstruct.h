@@ -17,7 +17,6 @@
 #include <CGAL/Surface_mesh_multiresolution/parameters.h>
 #include <CGAL/Surface_mesh_multiresolution/Pyramid.h>
 
-#include <CGAL/boost/graph/Euler_operations.h>
 #include <CGAL/boost/graph/helpers.h>
 #include <CGAL/boost/graph/named_params_helper.h>
 #include <CGAL/Surface_mesh/Surface_mesh_fwd.h>
@@ -83,13 +82,67 @@ void create_elements(CGAL::Surface_mesh<Point>& out, std::size_t nv, std::size_t
   for(std::size_t i = 0; i < nf; ++i) fd[i] = typename SM::Face_index(static_cast<size_type>(i));
 }
 
+// The border halfedge out of v at the other end of the fan of faces that the border halfedge
+// g (which ends at v) borders, reached by turning around v from twin(g).
+inline Index same_fan_border_halfedge(const Triangle_halfedges& th, Index g)
+{
+  Index h = th.twin[g];                                      // out of v, in a face
+  for(std::size_t turns = 0; turns <= th.source.size(); ++turns)
+  {
+    const Index into_v = h % 3 == 0 ? h + 2 : h - 1;         // the halfedge before h in its face
+    const Index t = th.twin[into_v];
+    if(!th.has_face(t))
+      return t;
+    h = t;
+  }
+  throw std::runtime_error("the faces do not form a halfedge mesh: a fan around a vertex does not end");
+}
+
+// For every border halfedge g (numbered from 3 nf), the border halfedge after it. Where every
+// vertex has at most one border gap, the only border halfedge out of its target (one pass).
+// At a vertex with several gaps (pinched between fans), the gaps are chained in a cycle as
+// Euler::add_face() does: g_i, incoming at the i-th gap, goes on with the outgoing border
+// halfedge of the next fan, so that the halfedges around the vertex form one cycle.
+inline std::vector<Index> border_successors(const Triangle_halfedges& th)
+{
+  const std::size_t nh = th.source.size(), h0 = 3 * th.nf;
+  std::vector<Index> border_out(th.n, invalid_index), next(nh - h0);
+  bool pinched = false;
+  for(std::size_t g = h0; g < nh && !pinched; ++g)
+  {
+    Index& b = border_out[th.source[g]];
+    pinched = (b != invalid_index);
+    b = static_cast<Index>(g);
+  }
+  if(!pinched)
+  {
+    for(std::size_t g = h0; g < nh; ++g)
+      next[g - h0] = border_out[th.target[g]];
+    return next;
+  }
+  std::vector<Index> offsets(th.n + 1, 0), incoming(nh - h0);   // border halfedges by target
+  for(std::size_t g = h0; g < nh; ++g) ++offsets[th.target[g] + 1];
+  for(std::size_t v = 0; v < th.n; ++v) offsets[v + 1] += offsets[v];
+  std::vector<Index> fill(offsets.begin(), offsets.end() - 1);
+  for(std::size_t g = h0; g < nh; ++g) incoming[fill[th.target[g]]++] = static_cast<Index>(g);
+  for(std::size_t v = 0; v < th.n; ++v)
+  {
+    const std::size_t m = offsets[v + 1] - offsets[v];
+    for(std::size_t i = 0; i < m; ++i)
+      next[incoming[offsets[v] + i] - h0] = same_fan_border_halfedge(th, incoming[offsets[v] + (i + 1) % m]);
+  }
+  return next;
+}
+
 // Makes the empty mesh `out` the triangle mesh of `tri` (nv vertices, 3 rows per face, faces
 // in this order); vd receives the vertex of each row. The halfedges are linked directly
-// (set_next, set_target, set_face...) from the index halfedges of Triangle_halfedges. Why by
-// hand: Euler::add_face() searches the halfedges around each corner for every face, which
-// was 40 % of a reconstruction of the dragon; here every edge is known with its twin. Falls
-// back to add_face() where a vertex has more than one border gap (a pinched vertex, whose
-// border cycles need add_face's search).
+// (set_next, set_target, set_face...) from the index halfedges of Triangle_halfedges, border
+// cycles included (also through pinched vertices). Why by hand: Euler::add_face() searches
+// the halfedges around each corner for every face, which was 40 % of a reconstruction of the
+// dragon (and fails on some orders of the faces around a pinched vertex); here every edge is
+// known with its twin.
+// \throws std::runtime_error if the faces are not those of a halfedge mesh (a directed edge
+// in two faces), not possible for the levels of a pyramid that check_pyramid() accepts
 template <typename FaceGraph>
 void build_triangle_mesh(FaceGraph& out, std::size_t nv, const std::vector<Index>& tri,
                          std::vector<typename boost::graph_traits<FaceGraph>::vertex_descriptor>& vd)
@@ -99,35 +152,10 @@ void build_triangle_mesh(FaceGraph& out, std::size_t nv, const std::vector<Index
   typedef typename GT::face_descriptor     face_descriptor;
   Triangle_halfedges th;
   th.build(nv, tri);
-  if(th.repeated_directed_edge)           // not possible for the levels of a valid pyramid
+  if(th.repeated_directed_edge)
     throw std::runtime_error("the faces do not form a halfedge mesh: a directed edge is shared by two faces");
   const std::size_t nh = th.source.size(), h0 = 3 * th.nf;
-  std::vector<Index> border_out(nv, invalid_index);
-  bool pinched = false;
-  for(std::size_t g = h0; g < nh && !pinched; ++g)
-  {
-    Index& b = border_out[th.source[g]];
-    pinched = (b != invalid_index);
-    b = static_cast<Index>(g);
-  }
-#ifndef CGAL_NO_ASSERTIONS
-  for(std::size_t h = 0; h < nh; ++h)                // Triangle_halfedges pairs every halfedge
-    CGAL_assertion(th.twin[h] != invalid_index && th.twin[th.twin[h]] == h);
-#endif
-  if(pinched)
-  {
-    vd.resize(nv);
-    for(auto& v : vd) v = add_vertex(out);
-    std::vector<typename GT::vertex_descriptor> corners(3);
-    for(std::size_t p = 0; p < th.nf; ++p)
-    {
-      for(int i = 0; i < 3; ++i)
-        corners[i] = vd[tri[3 * p + i]];
-      if(CGAL::Euler::add_face(corners, out) == GT::null_face())
-        throw std::runtime_error("the faces do not form a halfedge mesh: face " + std::to_string(p) + " cannot be added");
-    }
-    return;
-  }
+  const std::vector<Index> border_next = border_successors(th);
   std::vector<halfedge_descriptor> edge_halfedge, hd(nh);
   std::vector<face_descriptor> fd;
   create_elements(out, nv, nh / 2, th.nf, vd, edge_halfedge, fd);
@@ -149,12 +177,12 @@ void build_triangle_mesh(FaceGraph& out, std::size_t nv, const std::vector<Index
       set_halfedge(vd[th.target[k]], hd[k], out);
     }
   }
-  // border halfedges last, so that a border vertex's halfedge is its incoming border halfedge
+  // border halfedges last, so that a border vertex's halfedge is an incoming border halfedge
   for(std::size_t g = h0; g < nh; ++g)
   {
     set_face(hd[g], GT::null_face(), out);
     set_target(hd[g], vd[th.target[g]], out);
-    set_next(hd[g], hd[border_out[th.target[g]]], out);
+    set_next(hd[g], hd[border_next[g - h0]], out);
     set_halfedge(vd[th.target[g]], hd[g], out);
   }
 }

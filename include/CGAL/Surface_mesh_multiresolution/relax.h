@@ -65,7 +65,7 @@ struct Relaxation_setup
     builder.set_connectivity(mesh.number_of_vertices(), mesh.triangles);
   }
 
-  // the weights on the coordinates brought to a safe range (geometry_scale(): exact, weights unchanged)
+  // the weights on the coordinates brought to a safe range (geometry_for_computations(): exact, weights unchanged)
   void build(Sparse_weights& w, std::vector<Relaxation_row_rule>& rules)
   {
     std::vector<double> scaled;

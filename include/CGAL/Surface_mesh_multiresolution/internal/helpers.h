@@ -79,32 +79,33 @@ inline double scaled_length(const double* v, std::size_t dim)
   return std::scalbn(std::sqrt(s), e);
 }
 
-// The power of two 2^-e that brings the largest magnitude of `values` near 1, or 1 when the
-// values are in a range where the geometric computations (cross products, squared lengths,
-// quadrics: products of up to four coordinates) can neither overflow nor lose their small
-// terms to underflow. Scaling by a power of two is exact: weights, costs and normals, which
-// are invariant under scaling (costs scale by a constant factor), come out bit for bit the
-// same as without scaling wherever no scaling was needed.
-inline double geometry_scale(const double* values, std::size_t count)
+// The exponent e such that scaling `values` by 2^-e brings their largest magnitude near 1, or
+// 0 when the values are in a range where the geometric computations (cross products, squared
+// lengths, quadrics: products of up to four coordinates) can neither overflow nor lose their
+// small terms to underflow. Scaling by a power of two is exact (std::scalbn, also for
+// subnormal values): weights, costs and normals, which are invariant under scaling (costs
+// scale by a constant factor), come out bit for bit the same as without scaling wherever no
+// scaling was needed.
+inline int geometry_scale_exponent(const double* values, std::size_t count)
 {
   double m = 0.;
   for(std::size_t i = 0; i < count; ++i)
     m = (std::max)(m, std::abs(values[i]));
   if(!(m > 0.) || !std::isfinite(m))
-    return 1.;
+    return 0;
   const int e = std::ilogb(m);
-  return (e > -60 && e < 60) ? 1. : std::scalbn(1., -e);
+  return (e > -60 && e < 60) ? 0 : e;
 }
 
-// the coordinates scaled by geometry_scale() (a copy only where a scale is needed)
+// the coordinates scaled by 2^-geometry_scale_exponent() (a copy only where a scale is needed)
 inline const std::vector<double>& geometry_for_computations(const std::vector<double>& xyz, std::vector<double>& scaled)
 {
-  const double s = geometry_scale(xyz.data(), xyz.size());
-  if(s == 1.)
+  const int e = geometry_scale_exponent(xyz.data(), xyz.size());
+  if(e == 0)
     return xyz;
   scaled.resize(xyz.size());
   for(std::size_t i = 0; i < xyz.size(); ++i)
-    scaled[i] = xyz[i] * s;
+    scaled[i] = std::scalbn(xyz[i], -e);
   return scaled;
 }
 

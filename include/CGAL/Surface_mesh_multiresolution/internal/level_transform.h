@@ -34,11 +34,17 @@ namespace internal {
 // - where fl(p + d) differs from f by rounding, an additive correction f - fl(p + d) is stored;
 // - a prediction that is not finite (weights applied to values near the largest double) is
 //   taken as 0 on both sides, and a detail f - p that would overflow is stored as -p (so that
-//   p + d = 0) with f as its correction: every finite input comes back exactly.
+//   p + d = 0) with f as its correction: every finite input comes back exactly;
+// - -0.0 comes back as -0.0: p + (-p) is +0.0, and adding a correction cannot change the sign
+//   of a zero, so a zero correction means "this zero has the correction's sign"
+//   (apply_correction()). Analysis emits one only where fl(p + d) equals f but for the sign.
 
 typedef std::vector<std::pair<Index, double> > Corrections;
 
 inline double usable_prediction(double p) { return std::isfinite(p) ? p : 0.; }
+
+// v + c for a correction c; a zero correction gives a zero v the sign of c (-0.0 exactly)
+inline double apply_correction(double v, double c) { return c != 0. ? v + c : (v == 0. ? c : v); }
 
 // the odd rows of `state` (rows of M_k) receive the values of their collapse targets
 inline void odd_values_from_targets(const Pyramid_level& lev, std::size_t dim, double* state)
@@ -85,7 +91,7 @@ inline void analyse_level(const Pyramid_level& lev, const Sparse_weights& w, std
       d = -p;
     details[k] = d;
     const double t = p + d;
-    if(t != f[k])
+    if(t != f[k] || std::signbit(t) != std::signbit(f[k]))
       corrections.emplace_back(static_cast<Index>(k), f[k] - t);
   }
 }
@@ -111,7 +117,7 @@ inline void synthesize_level(const Pyramid_level& lev, const Sparse_weights& w, 
       state[i] = usable_prediction(prediction[i]) + d[i];
   for(const auto& cr : corrections)
     if(is_odd[cr.first / dim])
-      state[cr.first] = state[cr.first] + cr.second;
+      state[cr.first] = apply_correction(state[cr.first], cr.second);
   // Eq. 7: even vertices, from the intermediate mesh
   w.apply_row_list(state.data(), prediction.data(), dim, lev.even_rows.data(), lev.even_rows.size());
   for(Index r : lev.even_rows)
@@ -119,7 +125,7 @@ inline void synthesize_level(const Pyramid_level& lev, const Sparse_weights& w, 
       state[i] = usable_prediction(prediction[i]) + d[i];
   for(const auto& cr : corrections)
     if(!is_odd[cr.first / dim])
-      state[cr.first] = state[cr.first] + cr.second;
+      state[cr.first] = apply_correction(state[cr.first], cr.second);
 }
 
 // The face array of M_k (rows of M_k) from the one of M_{k+1} (rows of M_{k+1}): rows

@@ -1,0 +1,355 @@
+// Copyright (c) 2026  The Surface_mesh_multiresolution authors. All rights reserved.
+//
+// This file is part of Surface_mesh_multiresolution, an add-on package for CGAL.
+//
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Tests that attack: the invariants of every pyramid, crafted and randomly edited pyramid
+// files, extreme finite coordinates, and a seeded property-based fuzz test of every public
+// function on random meshes (holes, components, isolated vertices, degenerate triangles,
+// huge and tiny coordinates, several channel types). CI also runs them under AddressSanitizer
+// and UndefinedBehaviorSanitizer.
+
+#include <catch2/catch.hpp>
+
+#include <smr_test_utils.h>
+
+#include <CGAL/Surface_mesh_multiresolution.h>
+#include <CGAL/Surface_mesh_multiresolution/internal/Pyramid_checks.h>
+#include <CGAL/boost/graph/copy_face_graph.h>
+#include <CGAL/boost/graph/helpers.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <fstream>
+#include <functional>
+#include <limits>
+#include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace SMR = CGAL::Surface_mesh_multiresolution;
+using smr_test::Mesh;
+using smr_test::Point_3;
+using smr_test::Vector_3;
+typedef SMR::internal::Index Index;
+typedef SMR::internal::Pyramid_access Access;
+typedef CGAL::Simple_cartesian<double>::Vector_2 Vector_2;
+
+namespace {
+
+std::string bytes_of(const SMR::Pyramid<Mesh>& pyr)
+{
+  std::stringstream ss(std::ios::in | std::ios::out | std::ios::binary);
+  REQUIRE(SMR::IO::write_pyramid(ss, pyr));
+  return ss.str();
+}
+
+// reads a file's bytes; the reason of a refusal in `error`
+bool read_bytes(const std::string& bytes, SMR::Pyramid<Mesh>& pyr, std::string& error)
+{
+  std::istringstream in(bytes, std::ios::binary);
+  return SMR::IO::read_pyramid(in, pyr, error);
+}
+
+// the file with its checksum recomputed after an edit of the payload (24 bytes of header
+// before it, 8 bytes of checksum after it)
+std::string with_checksum(std::string bytes)
+{
+  const std::string payload = bytes.substr(24, bytes.size() - 32);
+  const std::uint64_t hash = SMR::internal::fnv1a(payload);
+  std::memcpy(&bytes[bytes.size() - 8], &hash, 8);
+  return bytes;
+}
+
+// the doubles of every point, bit for bit (-0.0 differs from 0.0)
+std::vector<std::uint64_t> coordinate_bits(const Mesh& m)
+{
+  std::vector<std::uint64_t> out;
+  for(auto v : vertices(m))
+    for(int c = 0; c < 3; ++c)
+    {
+      const double x = m.point(v)[c];
+      std::uint64_t b;
+      std::memcpy(&b, &x, 8);
+      out.push_back(b);
+    }
+  return out;
+}
+
+bool all_finite(const Mesh& m)
+{
+  for(auto v : vertices(m))
+    for(int c = 0; c < 3; ++c)
+      if(!std::isfinite(m.point(v)[c])) return false;
+  return true;
+}
+
+// everything a user does with a pyramid, none of which may fail on a valid one: every level
+// rebuilt as a valid mesh, adaptive reconstructions at 0, infinity and a budget, filters,
+// noise estimate, denoising, and a second save and read
+void use_fully(const SMR::Pyramid<Mesh>& pyr)
+{
+  const std::size_t K = pyr.number_of_levels();
+  for(std::size_t k = 0; k <= K; ++k)
+  {
+    INFO("level " << k << " of " << K);
+    Mesh out;
+    SMR::reconstruct(pyr, out, SMR::parameters::level(k));
+    REQUIRE(out.is_valid(false));   // Surface_mesh's own check: isolated vertices are valid
+    REQUIRE(num_vertices(out) == pyr.number_of_vertices(k));
+    REQUIRE(num_faces(out) == pyr.number_of_faces(k));
+  }
+  Mesh a;
+  SMR::reconstruct_adaptively(pyr, a, std::numeric_limits<double>::infinity());
+  REQUIRE(num_vertices(a) == pyr.number_of_vertices(K));
+  SMR::reconstruct_adaptively(pyr, a, 0.);
+  REQUIRE(num_vertices(a) == pyr.number_of_vertices(0));
+  const std::size_t budget = pyr.number_of_vertices(0) / 2;
+  SMR::reconstruct_adaptively(pyr, a, 0., SMR::parameters::target_number_of_vertices(budget));
+  REQUIRE(a.is_valid(false));
+  REQUIRE((num_vertices(a) <= budget || num_vertices(a) == pyr.number_of_vertices(K)));
+  const double sigma = SMR::estimate_noise(pyr);
+  REQUIRE((std::isfinite(sigma) && sigma >= 0.));
+  if(K > 0)
+  {
+    SMR::Pyramid<Mesh> p = pyr;
+    SMR::denoise(p, SMR::parameters::number_of_iterations(2u));
+    SMR::low_pass(p, 1);
+    REQUIRE(SMR::internal::check_pyramid(p).empty());
+    SMR::reconstruct(p, a);
+  }
+  SMR::Pyramid<Mesh> back;
+  std::string error;
+  REQUIRE(read_bytes(bytes_of(pyr), back, error));
+  REQUIRE(bytes_of(back) == bytes_of(pyr));
+}
+
+} // namespace
+
+TEST_CASE("every pyramid decompose() makes holds the invariants, also after filtering and denoising", "[attack][invariants]")
+{
+  for(int scheme = 0; scheme < 3; ++scheme)
+  {
+    Mesh m = smr_test::planar_grid<Mesh>(14, 0.3);
+    auto uv = m.add_property_map<Mesh::Vertex_index, Vector_2>("v:uv").first;
+    for(auto v : vertices(m)) uv[v] = Vector_2(m.point(v).x(), m.point(v).z());
+    SMR::Pyramid<Mesh> pyr = SMR::decompose(m, SMR::parameters::relaxation_scheme(SMR::Relaxation_scheme(scheme))
+                                                  .vertex_attribute_maps(std::make_tuple(uv)));
+    REQUIRE(pyr.number_of_levels() > 3);
+    CHECK(SMR::internal::check_pyramid(pyr) == "");
+    SMR::enhance(pyr, 1, 2, 1.5);
+    SMR::denoise(pyr, SMR::parameters::number_of_iterations(3u));
+    CHECK(SMR::internal::check_pyramid(pyr) == "");
+  }
+  Mesh elephant;
+  if(smr_test::read_cgal_mesh("meshes/elephant.off", elephant))
+    CHECK(SMR::internal::check_pyramid(SMR::decompose(elephant)) == "");
+}
+
+TEST_CASE("crafted pyramid files are refused with a reason", "[attack][io]")
+{
+  Mesh m = smr_test::planar_grid<Mesh>(10, 0.3);
+  const SMR::Pyramid<Mesh> good = SMR::decompose(m);
+  REQUIRE(good.number_of_levels() > 2);
+  const std::size_t n1 = good.number_of_vertices(1);
+  // each edit breaks one invariant; the writer writes what it is given, the reader refuses it
+  const std::vector<std::pair<std::string, std::function<void(SMR::Pyramid<Mesh>&)> > > edits = {
+    {"a face corner that is not a vertex of its level", [](SMR::Pyramid<Mesh>& p) { Access::levels(p)[1].removed_faces[0] = Index(p.number_of_vertices(1) + 3); }},
+    {"a coarsest face corner outside the coarsest mesh", [](SMR::Pyramid<Mesh>& p) { Access::coarse_faces(p)[0] = Index(p.number_of_vertices(p.number_of_levels())); }},
+    {"a renamed vertex that is not odd", [](SMR::Pyramid<Mesh>& p) { auto& l = Access::levels(p)[0]; l.renamed_vertices[0] = l.collapse_targets[0]; }},
+    {"a renamed vertex that is another odd vertex", [](SMR::Pyramid<Mesh>& p) { auto& l = Access::levels(p)[0]; l.renamed_vertices[0] = l.renamed_vertices[0] == l.odd_rows[0] ? l.odd_rows[1] : l.odd_rows[0]; }},
+    {"a collapse target outside its level", [](SMR::Pyramid<Mesh>& p) { Access::levels(p)[0].collapse_targets[0] = Index(p.number_of_vertices(0)); }},
+    {"a collapse target that is odd", [](SMR::Pyramid<Mesh>& p) { auto& l = Access::levels(p)[0]; l.collapse_targets[0] = l.odd_rows[1]; }},
+    {"two vertices collapsed into one", [](SMR::Pyramid<Mesh>& p) { auto& l = Access::levels(p)[0]; l.collapse_targets[1] = l.collapse_targets[0]; }},
+    {"odd rows not increasing", [](SMR::Pyramid<Mesh>& p) { auto& l = Access::levels(p)[0]; std::swap(l.odd_rows[0], l.odd_rows[1]); }},
+    {"an odd row outside its level", [](SMR::Pyramid<Mesh>& p) { Access::levels(p)[0].odd_rows.back() = Index(p.number_of_vertices(0)); }},
+    {"a weight column outside its level", [](SMR::Pyramid<Mesh>& p) { Access::levels(p)[0].weights.columns[5] = Index(p.number_of_vertices(0)); }},
+    {"a weight that is not finite", [](SMR::Pyramid<Mesh>& p) { Access::levels(p)[0].weights.values[5] = std::nan(""); }},
+    {"weight offsets that decrease", [](SMR::Pyramid<Mesh>& p) { auto& w = Access::levels(p)[0].weights; std::swap(w.offsets[3], w.offsets[4]); }},
+    {"details of the wrong size", [](SMR::Pyramid<Mesh>& p) { auto& d = Access::levels(p)[1].details[0]; d.resize(d.size() - 3); }},
+    {"a detail that is infinite", [](SMR::Pyramid<Mesh>& p) { Access::levels(p)[1].details[0][4] = std::numeric_limits<double>::infinity(); }},
+    {"a correction outside its level", [](SMR::Pyramid<Mesh>& p) { Access::levels(p)[0].corrections[0].emplace_back(Index(3 * p.number_of_vertices(0)), 1.); }},
+    {"coarsest values of the wrong size", [](SMR::Pyramid<Mesh>& p) { Access::coarse_values(p)[0].push_back(1.); }},
+    {"a removed face position outside its level", [](SMR::Pyramid<Mesh>& p) { Access::levels(p)[0].removed_face_positions.back() = Index(p.number_of_faces(0)); }},
+    {"a removed face without its odd vertex", [](SMR::Pyramid<Mesh>& p) { auto& l = Access::levels(p)[0]; for(int i = 0; i < 3; ++i) l.removed_faces[i] = l.collapse_targets[i]; }},
+    {"a renamed corner outside its level", [](SMR::Pyramid<Mesh>& p) { Access::levels(p)[0].renamed_corners[0] = Index(3 * p.number_of_faces(0)); }},
+    {"a renamed corner in a removed face", [](SMR::Pyramid<Mesh>& p) { auto& l = Access::levels(p)[0]; l.renamed_corners[0] = 3 * l.removed_face_positions[0]; }},
+    {"a coarsest face repeated (no halfedge mesh)", [](SMR::Pyramid<Mesh>& p) { auto& F = Access::coarse_faces(p); F.insert(F.end(), F.begin(), F.begin() + 3); }},
+    {"a removed face dropped (counts disagree)", [](SMR::Pyramid<Mesh>& p) { auto& l = Access::levels(p)[0]; l.removed_face_positions.pop_back(); }},
+  };
+  for(const auto& edit : edits)
+  {
+    INFO(edit.first);
+    SMR::Pyramid<Mesh> bad = good;
+    edit.second(bad);
+    SMR::Pyramid<Mesh> p = good;
+    std::string error;
+    CHECK_FALSE(read_bytes(bytes_of(bad), p, error));
+    CHECK(error.find("inconsistent pyramid") == 0);
+    CHECK(p.number_of_vertices(1) == n1);   // left unchanged
+  }
+  // the two edits of payload words that once crashed reconstruct() and reconstruct_adaptively()
+  std::string error;
+  SMR::Pyramid<Mesh> p;
+  REQUIRE(read_bytes(bytes_of(good), p, error));
+  CHECK(error.empty());
+  std::string v9 = bytes_of(good);
+  std::uint32_t version = 9;
+  std::memcpy(&v9[8], &version, 4);
+  CHECK_FALSE(read_bytes(v9, p, error));
+  CHECK(error == "pyramid format version 9 is not supported (versions 1 and 2 are)");
+}
+
+TEST_CASE("pyramid files of format version 1 are read and give the same pyramid", "[attack][io]")
+{
+  // grid8_v1.smrpyr: write_pyramid() of format version 1 for planar_grid(8, 0.3) with a
+  // colour channel (the colour of vertex i: (i % 256, 7, 99))
+  Mesh m = smr_test::planar_grid<Mesh>(8, 0.3);
+  auto color = m.add_property_map<Mesh::Vertex_index, CGAL::IO::Color>("v:color").first;
+  for(auto v : vertices(m)) color[v] = CGAL::IO::Color(static_cast<unsigned char>(v.idx() % 256), 7, 99);
+  const SMR::Pyramid<Mesh> now = SMR::decompose(m, SMR::parameters::vertex_attribute_maps(std::make_tuple(color)));
+  std::ifstream in(SMR_TEST_DATA_DIR "/grid8_v1.smrpyr", std::ios::binary);
+  REQUIRE(in);
+  SMR::Pyramid<Mesh> old;
+  std::string error;
+  REQUIRE(SMR::IO::read_pyramid(in, old, error));
+  CHECK(bytes_of(old) == bytes_of(now));
+  // and a version 1 file whose records are edited is refused too
+  std::ifstream again(SMR_TEST_DATA_DIR "/grid8_v1.smrpyr", std::ios::binary);
+  std::string bytes((std::istreambuf_iterator<char>(again)), std::istreambuf_iterator<char>());
+  std::size_t refused = 0;
+  for(std::size_t at = 24; at + 4 <= bytes.size() - 8; at += 4 * 37)   // about 300 words, of every array
+  {
+    std::string edited = bytes;
+    std::uint32_t w;
+    std::memcpy(&w, &edited[at], 4);
+    w += 1;
+    std::memcpy(&edited[at], &w, 4);
+    SMR::Pyramid<Mesh> p;
+    if(!read_bytes(with_checksum(edited), p, error))
+      ++refused;
+    else
+      use_fully(p);
+  }
+  CHECK(refused > 0);
+}
+
+TEST_CASE("any finite coordinates: weights stay finite and the round trip is exact, -0.0 included", "[attack][extreme]")
+{
+  const double big = std::numeric_limits<double>::max();
+  for(double scale : {1e300, -1e300, 1e-300, 4.9e-324 * 1024, big / 2})
+  {
+    INFO("scale " << scale);
+    Mesh m = smr_test::icosphere<Mesh>(2);
+    for(auto v : vertices(m))
+    {
+      const Point_3 p = m.point(v);
+      m.point(v) = Point_3(p.x() * scale, p.y() * scale, v.idx() % 7 == 0 ? -0.0 : p.z() * scale);
+    }
+    // the operator's weights are finite and sum to 1
+    const auto R = SMR::relaxation_operator(m);
+    for(double w : R.weights()) REQUIRE(std::isfinite(w));
+    for(int scheme = 0; scheme < 3; ++scheme)
+    {
+      const SMR::Pyramid<Mesh> pyr = SMR::decompose(m, SMR::parameters::relaxation_scheme(SMR::Relaxation_scheme(scheme)));
+      CHECK(pyr.number_of_levels() > 3);
+      REQUIRE(SMR::internal::check_pyramid(pyr) == "");   // finite weights, details and values
+      for(std::size_t j = 1; j <= pyr.number_of_levels(); ++j)
+        for(double l : pyr.detail_lengths(j, 0)) REQUIRE(std::isfinite(l));
+      Mesh out;
+      SMR::reconstruct(pyr, out);
+      CHECK(coordinate_bits(out) == coordinate_bits(m));
+      SMR::Pyramid<Mesh> back;
+      std::string error;
+      REQUIRE(read_bytes(bytes_of(pyr), back, error));
+      Mesh coarse;
+      SMR::reconstruct_adaptively(back, coarse, std::numeric_limits<double>::infinity());
+      CHECK(num_vertices(coarse) == pyr.number_of_vertices(pyr.number_of_levels()));
+    }
+  }
+}
+
+TEST_CASE("seeded fuzzing: random meshes through every public function", "[attack][fuzz]")
+{
+  CGAL::Random rng(20261201);
+  for(int trial = 0; trial < 40; ++trial)
+  {
+    INFO("trial " << trial);
+    // a sphere or a jittered grid, with holes, a second component, isolated vertices,
+    // degenerate triangles, and coordinates at a random scale (with some -0.0)
+    Mesh m = rng.get_int(0, 2) == 0 ? smr_test::icosphere<Mesh>(rng.get_int(0, 3))
+                                    : smr_test::planar_grid<Mesh>(rng.get_int(2, 12), rng.get_double(0, 0.45), unsigned(trial));
+    for(int h = rng.get_int(0, 4); h > 0 && num_faces(m) > 2; --h)
+      CGAL::Euler::remove_face(halfedge(Mesh::Face_index(rng.get_int(0, int(num_faces(m)))), m), m);
+    m.collect_garbage();
+    if(rng.get_int(0, 3) == 0)
+    {
+      Mesh other = smr_test::icosphere<Mesh>(1);
+      for(auto v : vertices(other)) other.point(v) = other.point(v) + Vector_3(3, 0, 0);
+      CGAL::copy_face_graph(other, m);
+    }
+    for(int i = rng.get_int(0, 3); i > 0; --i)
+      m.add_vertex(Point_3(rng.get_double(), rng.get_double(), rng.get_double()));
+    for(int i = rng.get_int(0, 4); i > 0 && num_vertices(m) > 1; --i)   // coincident points: zero-area triangles
+      m.point(Mesh::Vertex_index(rng.get_int(0, int(num_vertices(m))))) = m.point(Mesh::Vertex_index(rng.get_int(0, int(num_vertices(m)))));
+    const double scale = std::pow(10., 100 * rng.get_int(-3, 4));
+    for(auto v : vertices(m))
+    {
+      const Point_3 p = m.point(v);
+      m.point(v) = Point_3(p.x() * scale, rng.get_int(0, 10) == 0 ? -0.0 : p.y() * scale, p.z() * scale);
+    }
+    auto field = m.add_property_map<Mesh::Vertex_index, double>("v:f").first;
+    auto uv = m.add_property_map<Mesh::Vertex_index, Vector_2>("v:uv").first;
+    auto color = m.add_property_map<Mesh::Vertex_index, CGAL::IO::Color>("v:c").first;
+    for(auto v : vertices(m))
+    {
+      field[v] = rng.get_int(0, 8) == 0 ? -0.0 : rng.get_double(-1, 1) * std::pow(10., rng.get_int(-300, 300));
+      uv[v] = Vector_2(rng.get_double(), rng.get_double());
+      color[v] = CGAL::IO::Color(static_cast<unsigned char>(rng.get_int(0, 256)), 0, 255);
+    }
+    const auto maps = std::make_tuple(field, uv, color);
+    const SMR::Relaxation_scheme scheme = SMR::Relaxation_scheme(rng.get_int(0, 3));
+    SMR::Pyramid<Mesh> pyr = SMR::decompose(m, SMR::parameters::relaxation_scheme(scheme).vertex_attribute_maps(maps));
+    REQUIRE(SMR::internal::check_pyramid(pyr) == "");
+    // exact round trip, bit for bit, every channel
+    Mesh out;
+    auto of = out.add_property_map<Mesh::Vertex_index, double>("v:f").first;
+    auto ouv = out.add_property_map<Mesh::Vertex_index, Vector_2>("v:uv").first;
+    auto oc = out.add_property_map<Mesh::Vertex_index, CGAL::IO::Color>("v:c").first;
+    SMR::reconstruct(pyr, out, SMR::parameters::vertex_attribute_maps(std::make_tuple(of, ouv, oc)));
+    REQUIRE(coordinate_bits(out) == coordinate_bits(m));
+    for(auto v : vertices(m))
+    {
+      REQUIRE(std::memcmp(&of[v], &field[v], sizeof(double)) == 0);
+      REQUIRE(ouv[v] == uv[v]);
+      REQUIRE(oc[v] == color[v]);
+    }
+    use_fully(pyr);
+    // relaxation of the geometry and the channels stays finite
+    SMR::relax(m, SMR::parameters::relaxation_scheme(scheme).vertex_attribute_maps(maps));
+    REQUIRE(all_finite(m));
+    // random edits of the saved payload, checksum recomputed: refused, or accepted and usable
+    const std::string bytes = bytes_of(pyr);
+    for(int e = 0; e < 25; ++e)
+    {
+      std::string edited = bytes;
+      const std::size_t words = (bytes.size() - 32) / 4;
+      const std::size_t at = 24 + 4 * std::size_t(rng.get_int(0, int(words)));
+      std::uint32_t w;
+      std::memcpy(&w, &edited[at], 4);
+      const std::uint32_t choices[] = {0u, 1u, w + 1, w - 1, 0xFFFFFFFFu, std::uint32_t(rng.get_int(0, 1 << 20))};
+      w = choices[rng.get_int(0, 6)];
+      std::memcpy(&edited[at], &w, 4);
+      SMR::Pyramid<Mesh> p;
+      std::string error;
+      if(read_bytes(with_checksum(edited), p, error))
+        use_fully(p);
+      else
+        CHECK(!error.empty());
+    }
+  }
+}
