@@ -44,14 +44,10 @@ int main(int argc, char** argv)
     std::printf("%6zu %9zu %8zu", k, pyr.number_of_vertices(k), pyr.number_of_faces(k));
     if(k >= 1)
       for(std::size_t c = 0; c < 2; ++c) {   // the details D_k live on the vertices of M_{k-1}
-        const std::vector<double>& d = pyr.details(k, c);
-        const std::size_t dim = pyr.channel_dimension(c);
+        const std::vector<double> lengths = pyr.detail_lengths(k, c);
         double sum = 0;
-        for(std::size_t i = 0; i < d.size(); i += dim) {
-          double s = 0; for(std::size_t j = 0; j < dim; ++j) s += d[i + j] * d[i + j];
-          sum += std::sqrt(s);
-        }
-        std::printf("  %16.3g", sum / (d.size() / dim));
+        for(double l : lengths) sum += l;
+        std::printf("  %16.3g", sum / lengths.size());
       }
     std::printf("\n");
   }

@@ -334,11 +334,10 @@ TEST_CASE("adaptive reconstruction: 0 gives the input, infinity the coarsest, al
     // thresholds in between: valid meshes of the input's topology, vertices exactly the input's
     std::vector<double> lengths;
     for(std::size_t j = 1; j <= pyr.number_of_levels(); ++j)
-      for(std::size_t i = 0; i < pyr.details(j, 0).size(); i += 3)
-      {
-        const double* d = pyr.details(j, 0).data() + i;
-        lengths.push_back(std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]));
-      }
+    {
+      const std::vector<double> l = pyr.detail_lengths(j, 0);
+      lengths.insert(lengths.end(), l.begin(), l.end());
+    }
     std::sort(lengths.begin(), lengths.end());
     std::size_t previous = num_vertices(m) + 1;
     for(double quantile : {0.3, 0.6, 0.9, 0.99})

@@ -353,3 +353,32 @@ TEST_CASE("seeded fuzzing: random meshes through every public function", "[attac
     }
   }
 }
+
+TEST_CASE("details are edited through fixed-size views; detail lengths are their norms without overflow", "[attack][details]")
+{
+  Mesh m = smr_test::icosphere<Mesh>(2);
+  auto field = m.add_property_map<Mesh::Vertex_index, double>("v:f").first;
+  for(auto v : vertices(m)) field[v] = double(v.idx());
+  SMR::Pyramid<Mesh> pyr = SMR::decompose(m, SMR::parameters::vertex_attribute_maps(std::make_tuple(field)));
+  REQUIRE(pyr.number_of_levels() > 1);
+  SMR::Detail_view d = pyr.details(1, 0);
+  REQUIRE(d.size() == 3 * pyr.number_of_vertices(0));
+  d[0] = 3e300; d[1] = -4e300; d[2] = 0.;             // |(3, -4, 0)| = 5, at a scale where squares overflow
+  d[3] = 3e-300; d[4] = 4e-300; d[5] = -0.;           // and where they underflow
+  SMR::Detail_view s = pyr.details(1, 1);
+  s[0] = -2.5;
+  const std::vector<double> l = pyr.detail_lengths(1, 0);
+  REQUIRE(l.size() == pyr.number_of_vertices(0));
+  CHECK(l[0] == Approx(5e300).epsilon(1e-15));
+  CHECK(l[1] / 1e-300 == Approx(5.).epsilon(1e-15));
+  CHECK(pyr.detail_lengths(1, 1)[0] == 2.5);          // a scalar channel: the absolute value
+  for(std::size_t r = 2; r < l.size(); ++r)
+  {
+    const double* x = std::as_const(pyr).details(1, 0).data() + 3 * r;
+    CHECK(l[r] == std::sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]));   // ordinary values: the plain formula
+  }
+  for(double& x : pyr.details(2, 0)) x = 0.;          // a range of doubles
+  CHECK(std::as_const(pyr).details(2, 0) == std::vector<double>(3 * pyr.number_of_vertices(1), 0.));
+  REQUIRE_THROWS_AS(pyr.detail_lengths(0, 0), std::invalid_argument);
+  REQUIRE_THROWS_AS(pyr.detail_lengths(1, 2), std::invalid_argument);
+}

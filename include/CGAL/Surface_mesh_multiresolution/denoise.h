@@ -72,9 +72,20 @@ std::size_t chosen_levels(const Pyramid<TriangleMesh>& pyr, const NamedParameter
  *
  * \param pyr the pyramid, modified
  * \param t the threshold, \f$ t \ge 0 \f$ (\f$ t = 0 \f$ changes nothing, \f$ t = \infty \f$ zeroes the details)
- * \param np optional \ref smr_namedparameters "Named Parameters": `levels` (std::size_t: the number of finest
- *        detail levels \f$ D_1 \ldots \f$ to threshold; default the five finest, or all if fewer) and
- *        `channel` (std::size_t; default 0, the geometry)
+ * \param np an optional sequence of \ref smr_namedparameters "Named Parameters" among the ones listed below
+ *
+ * \cgalNamedParamsBegin
+ *   \cgalParamNBegin{levels}
+ *     \cgalParamDescription{the number of finest detail levels \f$ D_1 \ldots \f$ to threshold}
+ *     \cgalParamType{std::size_t}
+ *     \cgalParamDefault{the five finest\, or all if fewer}
+ *   \cgalParamNEnd
+ *   \cgalParamNBegin{channel}
+ *     \cgalParamDescription{the channel whose details are thresholded (0: the geometry)}
+ *     \cgalParamType{std::size_t}
+ *     \cgalParamDefault{`0`}
+ *   \cgalParamNEnd
+ * \cgalNamedParamsEnd
  * \throws std::invalid_argument if `t` is negative or NaN, or the levels or the channel do not exist
  */
 template <typename TriangleMesh, typename NamedParameters = parameters::Default_named_parameters>
@@ -274,7 +285,15 @@ void analyse_again(Pyramid<TriangleMesh>& pyr, std::size_t c, const std::vector<
  * Measured on the standard noisy/clean pairs (Gaussian noise along the normals of 0.2 to 0.7
  * mean edge lengths): within 4 % of the deviation of `noisy - clean` up to 0.4 edges.
  * \param pyr the pyramid
- * \param np optional: `channel` (default 0, the geometry)
+ * \param np an optional sequence of \ref smr_namedparameters "Named Parameters" among the ones listed below
+ *
+ * \cgalNamedParamsBegin
+ *   \cgalParamNBegin{channel}
+ *     \cgalParamDescription{the channel whose noise is estimated (0: the geometry)}
+ *     \cgalParamType{std::size_t}
+ *     \cgalParamDefault{`0`}
+ *   \cgalParamNEnd
+ * \cgalNamedParamsEnd
  * \returns 0 for a pyramid without levels
  */
 template <typename TriangleMesh, typename NamedParameters = parameters::Default_named_parameters>
@@ -321,8 +340,20 @@ double estimate_noise(const Pyramid<TriangleMesh>& pyr, const NamedParameters& n
  * data.
  *
  * \param pyr the pyramid, modified
- * \param np optional: `channel` (default 0, the geometry) and `number_of_iterations`
- *        (unsigned int, the number of passes, default 40; 0 changes nothing)
+ * \param np an optional sequence of \ref smr_namedparameters "Named Parameters" among the ones listed below
+ *
+ * \cgalNamedParamsBegin
+ *   \cgalParamNBegin{channel}
+ *     \cgalParamDescription{the channel to denoise (0: the geometry)}
+ *     \cgalParamType{std::size_t}
+ *     \cgalParamDefault{`0`}
+ *   \cgalParamNEnd
+ *   \cgalParamNBegin{number_of_iterations}
+ *     \cgalParamDescription{the number of passes (0 changes nothing)}
+ *     \cgalParamType{unsigned int}
+ *     \cgalParamDefault{`40`}
+ *   \cgalParamNEnd
+ * \cgalNamedParamsEnd
  * \returns the threshold of the first step (0 for a pyramid without levels)
  */
 template <typename TriangleMesh, typename NamedParameters = parameters::Default_named_parameters>

@@ -40,7 +40,15 @@ inline void check_detail_range(std::size_t a, std::size_t b, std::size_t K, cons
  * \param pyr the pyramid, modified
  * \param level the detail level \f$ j \f$
  * \param gain the factor: 0 removes the band, 1 keeps it, more than 1 enhances it
- * \param np optional \ref smr_namedparameters "Named Parameters": `channel` (std::size_t, 0 the geometry; default: every channel)
+ * \param np an optional sequence of \ref smr_namedparameters "Named Parameters" among the ones listed below
+ *
+ * \cgalNamedParamsBegin
+ *   \cgalParamNBegin{channel}
+ *     \cgalParamDescription{the channel to scale (0: the geometry)}
+ *     \cgalParamType{std::size_t}
+ *     \cgalParamDefault{every channel}
+ *   \cgalParamNEnd
+ * \cgalNamedParamsEnd
  * \throws std::invalid_argument if `level` or the channel does not exist, or `gain` is not finite
  */
 template <typename TriangleMesh, typename NamedParameters = parameters::Default_named_parameters>

@@ -23,7 +23,7 @@
 #endif
 
 #define CGAL_SMR_VERSION_MAJOR 0
-#define CGAL_SMR_VERSION_MINOR 1
+#define CGAL_SMR_VERSION_MINOR 2
 #define CGAL_SMR_VERSION_PATCH 0
 
 namespace CGAL {
