@@ -20,6 +20,8 @@
 #include <CGAL/boost/graph/helpers.h>
 
 #include <algorithm>
+#include <array>
+#include <set>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -354,7 +356,7 @@ TEST_CASE("seeded fuzzing: random meshes through every public function", "[attac
   }
 }
 
-TEST_CASE("details are edited through fixed-size views; detail lengths are their norms without overflow", "[attack][details]")
+TEST_CASE("details are edited through fixed-size views, detail lengths are their norms without overflow", "[attack][details]")
 {
   Mesh m = smr_test::icosphere<Mesh>(2);
   auto field = m.add_property_map<Mesh::Vertex_index, double>("v:f").first;
@@ -381,4 +383,35 @@ TEST_CASE("details are edited through fixed-size views; detail lengths are their
   CHECK(std::as_const(pyr).details(2, 0) == std::vector<double>(3 * pyr.number_of_vertices(1), 0.));
   REQUIRE_THROWS_AS(pyr.detail_lengths(0, 0), std::invalid_argument);
   REQUIRE_THROWS_AS(pyr.detail_lengths(1, 2), std::invalid_argument);
+}
+
+TEST_CASE("adaptive faces: keeping exactly the vertices of M_k gives the faces of M_k", "[attack][adaptive]")
+{
+  Mesh m = smr_test::planar_grid<Mesh>(16, 0.3);
+  CGAL::Euler::remove_face(halfedge(Mesh::Face_index(100), m), m);   // a hole
+  m.collect_garbage();
+  const SMR::Pyramid<Mesh> pyr = SMR::decompose(m);
+  REQUIRE(pyr.number_of_levels() > 3);
+  SMR::internal::Adaptive_hierarchy h;
+  SMR::internal::build_adaptive_hierarchy(pyr, h);
+  auto canonical = [](Index a, Index b, Index c) {
+    std::array<Index, 3> t{{a, b, c}};
+    std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
+    return t;
+  };
+  for(std::size_t k = 0; k <= pyr.number_of_levels(); ++k)
+  {
+    INFO("level " << k);
+    std::vector<unsigned char> keep(pyr.number_of_vertices(0), 0);
+    for(Index g : pyr.vertices(k)) keep[g] = 1;
+    std::vector<Index> kept;
+    const std::vector<Index> F = SMR::internal::adaptive_faces(pyr, h, keep, kept);
+    CHECK(kept == pyr.vertices(k));
+    std::vector<Index> Fk;
+    SMR::internal::reconstruct_faces(pyr, k, Fk);              // rows of M_k = rows of `kept`
+    std::multiset<std::array<Index, 3> > a, b;
+    for(std::size_t i = 0; i < F.size(); i += 3) a.insert(canonical(F[i], F[i + 1], F[i + 2]));
+    for(std::size_t i = 0; i < Fk.size(); i += 3) b.insert(canonical(Fk[i], Fk[i + 1], Fk[i + 2]));
+    CHECK(a == b);
+  }
 }
