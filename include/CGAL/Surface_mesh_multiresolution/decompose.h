@@ -92,6 +92,7 @@ private:
     analyse_channels(level);
     collapse_face_array(level);
     move_to_next_level(level);
+    m_builder = Relaxation_weight_builder();   // a level's halfedges and cotangents follow its size
     m_visitor.on_level_finished(k, level.odd_rows.size());
     return true;
   }
