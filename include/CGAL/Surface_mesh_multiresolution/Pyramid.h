@@ -191,24 +191,14 @@ public:
   std::vector<std::uint32_t> odd_vertices(std::size_t j) const
   {
     check_detail_level(j);
-    const internal::Pyramid_level& lev = m_levels[j - 1];
-    std::vector<std::uint32_t> out;
-    out.reserve(lev.odd_rows.size());
-    for(Index r : lev.odd_rows)
-      out.push_back(lev.vertices[r]);
-    return out;
+    return input_numbers(m_levels[j - 1], m_levels[j - 1].odd_rows);
   }
 
   /// the input number of the vertex each odd vertex of \f$ D_j \f$ was collapsed into (in the order of `odd_vertices(j)`), \f$ 1 \le j \le K \f$
   std::vector<std::uint32_t> collapse_targets(std::size_t j) const
   {
     check_detail_level(j);
-    const internal::Pyramid_level& lev = m_levels[j - 1];
-    std::vector<std::uint32_t> out;
-    out.reserve(lev.collapse_targets.size());
-    for(Index r : lev.collapse_targets)
-      out.push_back(lev.vertices[r]);
-    return out;
+    return input_numbers(m_levels[j - 1], m_levels[j - 1].collapse_targets);
   }
 
   /// \cond SKIP_IN_MANUAL
@@ -223,6 +213,15 @@ public:
 
 private:
   friend struct internal::Pyramid_access;
+
+  static std::vector<std::uint32_t> input_numbers(const internal::Pyramid_level& lev, const std::vector<Index>& rows)
+  {
+    std::vector<std::uint32_t> out;
+    out.reserve(rows.size());
+    for(Index r : rows)
+      out.push_back(lev.vertices[r]);
+    return out;
+  }
 
   void check_mesh_level(std::size_t k) const
   {
