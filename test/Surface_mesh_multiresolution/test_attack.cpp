@@ -24,6 +24,7 @@
 #include <set>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <functional>
@@ -106,6 +107,7 @@ void use_fully(const SMR::Pyramid<Mesh>& pyr)
     REQUIRE(num_faces(out) == pyr.number_of_faces(k));
   }
   Mesh a;
+  INFO("adaptive reconstructions");
   SMR::reconstruct_adaptively(pyr, a, std::numeric_limits<double>::infinity());
   REQUIRE(num_vertices(a) == pyr.number_of_vertices(K));
   SMR::reconstruct_adaptively(pyr, a, 0.);
@@ -181,6 +183,11 @@ TEST_CASE("crafted pyramid files are refused with a reason", "[attack][io]")
     {"a renamed corner outside its level", [](SMR::Pyramid<Mesh>& p) { Access::levels(p)[0].renamed_corners[0] = Index(3 * p.number_of_faces(0)); }},
     {"a renamed corner in a removed face", [](SMR::Pyramid<Mesh>& p) { auto& l = Access::levels(p)[0]; l.renamed_corners[0] = 3 * l.removed_face_positions[0]; }},
     {"a coarsest face repeated (no halfedge mesh)", [](SMR::Pyramid<Mesh>& p) { auto& F = Access::coarse_faces(p); F.insert(F.end(), F.begin(), F.begin() + 3); }},
+    {"a removed face's third corner moved (each level still a halfedge mesh, the collapse no longer valid)", [](SMR::Pyramid<Mesh>& p) {
+       auto& l = Access::levels(p)[0];
+       for(int i = 0; i < 3; ++i)
+         if(std::find(l.odd_rows.begin(), l.odd_rows.end(), l.removed_faces[i]) == l.odd_rows.end() && l.removed_faces[i] != l.collapse_targets[0])
+         { l.removed_faces[i] = l.even_rows[(l.removed_faces[i] + 17) % l.even_rows.size()]; break; } }},
     {"a removed face dropped (counts disagree)", [](SMR::Pyramid<Mesh>& p) { auto& l = Access::levels(p)[0]; l.removed_face_positions.pop_back(); }},
   };
   for(const auto& edit : edits)
@@ -277,8 +284,12 @@ TEST_CASE("any finite coordinates: weights stay finite and the round trip is exa
 
 TEST_CASE("seeded fuzzing: random meshes through every public function", "[attack][fuzz]")
 {
-  CGAL::Random rng(20261201);
-  for(int trial = 0; trial < 40; ++trial)
+  // SMR_FUZZ_SEED and SMR_FUZZ_TRIALS (environment) run other or longer campaigns
+  const char* seed = std::getenv("SMR_FUZZ_SEED");
+  const char* trials = std::getenv("SMR_FUZZ_TRIALS");
+  CGAL::Random rng(seed != nullptr ? unsigned(std::stoul(seed)) : 20261201u);
+  const int number_of_trials = trials != nullptr ? std::stoi(trials) : 40;
+  for(int trial = 0; trial < number_of_trials; ++trial)
   {
     INFO("trial " << trial);
     // a sphere or a jittered grid, with holes, a second component, isolated vertices,
@@ -286,8 +297,10 @@ TEST_CASE("seeded fuzzing: random meshes through every public function", "[attac
     Mesh m = rng.get_int(0, 2) == 0 ? smr_test::icosphere<Mesh>(rng.get_int(0, 3))
                                     : smr_test::planar_grid<Mesh>(rng.get_int(2, 12), rng.get_double(0, 0.45), unsigned(trial));
     for(int h = rng.get_int(0, 4); h > 0 && num_faces(m) > 2; --h)
+    {
       CGAL::Euler::remove_face(halfedge(Mesh::Face_index(rng.get_int(0, int(num_faces(m)))), m), m);
-    m.collect_garbage();
+      m.collect_garbage();                                    // face indices stay 0..n-1
+    }
     if(rng.get_int(0, 3) == 0)
     {
       Mesh other = smr_test::icosphere<Mesh>(1);
@@ -338,14 +351,17 @@ TEST_CASE("seeded fuzzing: random meshes through every public function", "[attac
     const std::string bytes = bytes_of(pyr);
     for(int e = 0; e < 25; ++e)
     {
+      INFO("payload edit " << e);
       std::string edited = bytes;
       const std::size_t words = (bytes.size() - 32) / 4;
       const std::size_t at = 24 + 4 * std::size_t(rng.get_int(0, int(words)));
       std::uint32_t w;
       std::memcpy(&w, &edited[at], 4);
       const std::uint32_t choices[] = {0u, 1u, w + 1, w - 1, 0xFFFFFFFFu, std::uint32_t(rng.get_int(0, 1 << 20))};
+      const std::uint32_t was = w;
       w = choices[rng.get_int(0, 6)];
       std::memcpy(&edited[at], &w, 4);
+      INFO("word at " << at << ": " << was << " -> " << w);
       SMR::Pyramid<Mesh> p;
       std::string error;
       if(read_bytes(with_checksum(edited), p, error))

@@ -9,8 +9,10 @@
 #define CGAL_SURFACE_MESH_MULTIRESOLUTION_INTERNAL_PYRAMID_CHECKS_H
 
 #include <CGAL/Surface_mesh_multiresolution/internal/config.h>
+#include <CGAL/Surface_mesh_multiresolution/internal/collapse_selection.h>
 #include <CGAL/Surface_mesh_multiresolution/internal/helpers.h>
 #include <CGAL/Surface_mesh_multiresolution/internal/level_transform.h>
+#include <CGAL/Surface_mesh_multiresolution/internal/Triangle_halfedges.h>
 #include <CGAL/Surface_mesh_multiresolution/Pyramid.h>
 
 #include <algorithm>
@@ -37,7 +39,11 @@ namespace internal {
 //      increasing below |F_k| / 3; removed faces hold rows of M_k, exactly one odd, with its
 //      collapse target; renamed corners distinct, below |F_k|, not in a removed face, renamed
 //      to an odd row whose collapse target is the corner's vertex in M_{k+1}; every face of every F_k has three different corners and no
-//      directed edge is in two faces (each M_k is a halfedge mesh).
+//      directed edge is in two faces (each M_k is a halfedge mesh);
+//  (7) collapses: on M_k, every odd vertex o is joined to its target e by an edge, no two
+//      odd vertices are neighbours (the independent set of the selection), a border vertex
+//      collapses along a border edge, and the link condition holds: the collapses are those decompose() may accept,
+//      which the vertex splits of an adaptive reconstruction rely on.
 // The checks touch every record once per level (the face checks replay the vertex splits):
 // O(size of the pyramid) apart from sorting each vertex's out-going edges.
 
@@ -143,6 +149,34 @@ inline std::string check_level_records(const Pyramid_level& lev, const std::vect
   return std::string();
 }
 
+// (7) for one level, on its face array F (rows of M_k)
+inline std::string check_collapses(const Pyramid_level& lev, const std::vector<Index>& F)
+{
+  const std::size_t n = lev.number_of_rows();
+  Triangle_halfedges th;
+  th.build(n, F, true);
+  std::vector<unsigned char> on_border(n, 0);
+  for(std::size_t h = 3 * th.nf; h < th.source.size(); ++h)
+    on_border[th.source[h]] = on_border[th.target[h]] = 1;
+  std::vector<unsigned char> is_odd;
+  odd_row_flags(lev, is_odd);
+  for(std::size_t q = 0; q < lev.odd_rows.size(); ++q)
+  {
+    const Index o = lev.odd_rows[q], e = lev.collapse_targets[q];
+    Index h = invalid_index;
+    for(Index k = th.out_offsets[o]; k < th.out_offsets[o + 1]; ++k)
+    {
+      if(is_odd[th.out_target[k]])
+        return "two odd vertices are neighbours";
+      if(th.out_target[k] == e) h = th.out[k];
+    }
+    if(h == invalid_index) return "a collapse target is not a neighbour of its odd vertex";
+    if(on_border[o] && !th.is_border_edge(h)) return "a border vertex collapses off the border";
+    if(!satisfies_link_condition(th, h, o, e, on_border)) return "a collapse breaks the link condition";
+  }
+  return std::string();
+}
+
 // (6) for one level: F holds F_{k+1} (rows of M_{k+1}) and receives F_k
 inline std::string check_and_expand_faces(const Pyramid_level& lev, std::vector<Index>& F)
 {
@@ -182,7 +216,9 @@ inline std::string check_and_expand_faces(const Pyramid_level& lev, std::vector<
       return "a renamed corner did not hold the collapse target of its vertex";
   }
   expand_faces(lev, F);                                   // its other corners come from M_{k+1}: even
-  return is_halfedge_face_set(n, F) ? std::string() : "the faces of a level do not form a halfedge mesh";
+  if(!is_halfedge_face_set(n, F))
+    return "the faces of a level do not form a halfedge mesh";
+  return check_collapses(lev, F);
 }
 
 // The first invariant `pyr` breaks, in words; empty if it holds them all. Expects the rows
