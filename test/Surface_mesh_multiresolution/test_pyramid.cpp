@@ -714,6 +714,16 @@ TEST_CASE("Triangle_halfedges pairs the halfedges of the mesh, also when a direc
     CGAL::copy_face_graph(grid, two);
     meshes.push_back(two);
   }
+  for(bool hub_first : {true, false})                        // fans with a centre of valence 100 (long rings, sorted)
+  {
+    Mesh fan;
+    const auto first = hub_first ? fan.add_vertex(Point_3(0, 0, 1)) : Mesh::Vertex_index();
+    std::vector<Mesh::Vertex_index> rim;
+    for(int i = 0; i < 100; ++i) rim.push_back(fan.add_vertex(Point_3(std::cos(0.0628 * i), std::sin(0.0628 * i), 0)));
+    const auto centre = hub_first ? first : fan.add_vertex(Point_3(0, 0, 1));
+    for(int i = 0; i < 99; ++i) fan.add_face(centre, rim[i], rim[i + 1]);   // open: one border gap at the centre
+    meshes.push_back(fan);
+  }
   for(const Mesh& m : meshes)
   {
     SMR::internal::Indexed_mesh<Mesh> im;
@@ -757,6 +767,23 @@ TEST_CASE("Triangle_halfedges pairs the halfedges of the mesh, also when a direc
   }
   CHECK(th.twin[0] == 3);                                    // 0 -> 1 of the first face pairs with 1 -> 0
   CHECK(!th.has_face(th.twin[6]));                           // the repeated 0 -> 1 gets a border twin
+  CHECK(th.repeated_directed_edge);
+  // the same in a long ring (searched sorted): vertex 0 with 40 faces, 0 -> 1 in two of them
+  std::vector<Index> fan;
+  for(Index i = 1; i <= 40; ++i) fan.insert(fan.end(), {0, i, i + 1});
+  fan.insert(fan.end(), {0, 1, 50});                         // face 40: 0 -> 1 again
+  fan.insert(fan.end(), {1, 0, 45});                         // face 41: the one 1 -> 0
+  SMR::internal::Triangle_halfedges long_ring;
+  long_ring.build(51, fan);
+  CHECK(long_ring.repeated_directed_edge);
+  for(Index h = 0; h < long_ring.source.size(); ++h)
+  {
+    REQUIRE(long_ring.twin[h] != SMR::internal::invalid_index);
+    CHECK(long_ring.twin[long_ring.twin[h]] == h);
+    CHECK(long_ring.source[long_ring.twin[h]] == long_ring.target[h]);
+  }
+  CHECK(long_ring.twin[0] == 3 * 41);                        // the first 0 -> 1 pairs with 1 -> 0 (first come, first served)
+  CHECK(!long_ring.has_face(long_ring.twin[3 * 40]));        // the second gets a border twin
 }
 
 TEST_CASE("the look-ahead greedy selection takes the collapses of the plain greedy loop", "[pyramid][cost]")

@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <utility>
 #include <stdexcept>
 #include <vector>
 
@@ -43,6 +44,12 @@ struct Triangle_halfedges
   // has these faces; the pairing is then first come, first served
   bool repeated_directed_edge = false;
 
+private:
+  std::vector<Index> m_sorted_first;                 // per vertex: where its sorted ring starts in m_sorted (long rings only)
+  std::vector<std::pair<Index, Index> > m_sorted;    // (target, position in out) of the long rings
+
+public:
+
   static Index next_in_face(Index h) { return h % 3 == 2 ? h - 2 : h + 1; }
   bool has_face(Index h) const { return h < 3 * nf; }
   bool is_border_edge(Index h) const { return !has_face(h) || !has_face(twin[h]); }
@@ -58,6 +65,7 @@ struct Triangle_halfedges
     n = nv;
     nf = tri.size() / 3;
     list_outgoing_face_halfedges(tri, with_apexes);
+    sort_long_rings();
     repeated_directed_edge = !match_twins_by_smaller_end();
     if(repeated_directed_edge)
       match_twins_first_come(tri);
@@ -74,6 +82,8 @@ struct Triangle_halfedges
     });
     if(border_halfedges > 0)                         // closed mesh: the rows are the face halfedges
       add_border_halfedges(border_halfedges, with_apexes);
+    m_sorted_first = std::vector<Index>();
+    m_sorted = std::vector<std::pair<Index, Index> >();
   }
 
 private:
@@ -100,6 +110,64 @@ private:
     }
   }
 
+  // Rings longer than long_ring are also listed sorted by target, so that finding a target
+  // in them (twins, repeated edges) is a binary search: a vertex of valence D (the centre of
+  // a fan-triangulated polygon, a crafted file) then costs D log D, not D^2. Shorter rings
+  // are searched in place, and meshes without long rings pay one pass over the degrees.
+  static constexpr Index long_ring = 32;
+
+  void sort_long_rings()
+  {
+    m_sorted_first.clear();
+    m_sorted.clear();
+    std::size_t total = 0;
+    for(std::size_t v = 0; v < n; ++v)
+      total += (out_offsets[v + 1] - out_offsets[v] > long_ring) ? out_offsets[v + 1] - out_offsets[v] : 0;
+    if(total == 0)
+      return;
+    m_sorted_first.assign(n, invalid_index);
+    m_sorted.reserve(total);
+    for(std::size_t v = 0; v < n; ++v)
+      if(out_offsets[v + 1] - out_offsets[v] > long_ring)
+      {
+        m_sorted_first[v] = static_cast<Index>(m_sorted.size());
+        for(Index k = out_offsets[v]; k < out_offsets[v + 1]; ++k)
+          m_sorted.emplace_back(out_target[k], k);
+        std::sort(m_sorted.end() - (out_offsets[v + 1] - out_offsets[v]), m_sorted.end());   // by target, then ring order
+      }
+  }
+
+  // the positions k of v's ring with out_target[k] == a, in ring order, passed to f until it returns true
+  template <typename F>
+  void for_each_in_ring(Index v, Index a, const F& f) const
+  {
+    if(!m_sorted_first.empty() && m_sorted_first[v] != invalid_index)
+    {
+      const auto first = m_sorted.begin() + m_sorted_first[v];
+      const auto last = first + (out_offsets[v + 1] - out_offsets[v]);
+      for(auto it = std::lower_bound(first, last, std::make_pair(a, Index(0))); it != last && it->first == a; ++it)
+        if(f(it->second)) return;
+      return;
+    }
+    for(Index k = out_offsets[v]; k < out_offsets[v + 1]; ++k)
+      if(out_target[k] == a && f(k)) return;
+  }
+
+  // whether v's ring lists a target twice
+  bool ring_repeats_a_target(Index v) const
+  {
+    if(!m_sorted_first.empty() && m_sorted_first[v] != invalid_index)
+    {
+      const auto first = m_sorted.begin() + m_sorted_first[v];
+      const auto last = first + (out_offsets[v + 1] - out_offsets[v]);
+      return std::adjacent_find(first, last, [](const auto& x, const auto& y) { return x.first == y.first; }) != last;
+    }
+    for(Index k = out_offsets[v]; k < out_offsets[v + 1]; ++k)
+      for(Index j = out_offsets[v]; j < k; ++j)
+        if(out_target[j] == out_target[k]) return true;
+    return false;
+  }
+
   // twin of a -> b: b's outgoing halfedge towards a. Each edge {a, b} is matched once, by its
   // smaller end (vertex by vertex, in parallel: the 1-rings searched are those of the
   // neighbours of consecutive vertices, near in memory for meshes whose vertex order has some
@@ -112,24 +180,23 @@ private:
     parallel_for_blocks(n, [&](std::size_t first, std::size_t last) {
       bool repeated = false;
       for(std::size_t a = first; a < last; ++a)
+      {
+        repeated = repeated || ring_repeats_a_target(static_cast<Index>(a));
         for(Index k = out_offsets[a]; k < out_offsets[a + 1]; ++k)
         {
           const Index b = out_target[k];
-          for(Index j = out_offsets[a]; j < k; ++j)
-            repeated = repeated || out_target[j] == b;
           if(b <= a)
           {
             repeated = repeated || b == a;
             continue;                                // matched from b (or a loop)
           }
-          for(Index q = out_offsets[b]; q < out_offsets[b + 1]; ++q)
-            if(out_target[q] == a)
-            {
-              twin[out[k]] = out[q];
-              twin[out[q]] = out[k];
-              break;
-            }
+          for_each_in_ring(b, static_cast<Index>(a), [&](Index q) {
+            twin[out[k]] = out[q];
+            twin[out[q]] = out[k];
+            return true;
+          });
         }
+      }
       if(repeated)
         ambiguous.store(true, std::memory_order_relaxed);
     }, 4096);
@@ -146,13 +213,13 @@ private:
       if(twin[h] != invalid_index)
         continue;
       const Index a = tri[h], b = tri[next_in_face(h)];
-      for(Index k = out_offsets[b]; k < out_offsets[b + 1]; ++k)
-        if(out_target[k] == a && out[k] != h && twin[out[k]] == invalid_index)
-        {
-          twin[h] = out[k];
-          twin[out[k]] = h;
-          break;
-        }
+      for_each_in_ring(b, a, [&](Index k) {
+        if(out[k] == h || twin[out[k]] != invalid_index)
+          return false;
+        twin[h] = out[k];
+        twin[out[k]] = h;
+        return true;
+      });
     }
   }
 

@@ -134,9 +134,16 @@ public:
       });
       return;
     }
+    build_sod_rows(xyz, fixed, w, rules);
+  }
 
-    // SOD rows have lengths known only once assembled: one sequential pass into an upper bound
+private:
+  // SOD rows have lengths known only once assembled: one sequential pass into an upper bound
+  void build_sod_rows(const double* xyz, const unsigned char* fixed, Sparse_weights& w, std::vector<Relaxation_row_rule>& rules)
+  {
+    const std::size_t n = m_mesh.n;
     compute_hinge_coefficients(xyz);
+    m_local_position.assign(n, invalid_index);
     const std::size_t capacity = 3 * m_mesh.out.size() + n;
     w.columns.resize(capacity);
     w.values.resize(capacity);
@@ -154,7 +161,7 @@ public:
         length = 1;
       }
       else if(rule == Relaxation_row_rule::BORDER)
-        length = border_row(scheme, i, xyz, col, val);
+        length = border_row(Relaxation_scheme::SECOND_ORDER_DIFFERENCE, i, xyz, col, val);
       else if(!(length = sod_row(i, col, val)))
       {
         rule = curvature_row(i, col, val);
@@ -170,7 +177,6 @@ public:
     w.values.resize(size);
   }
 
-private:
   Index degree(std::size_t i) const { return m_mesh.out_offsets[i + 1] - m_mesh.out_offsets[i]; }
 
   // FIXED, BORDER, or SCHEME for the rows whose weights depend on the scheme
@@ -354,11 +360,12 @@ private:
       if(m == k)
         continue;
       const double x = -c[k] * c[m];
-      std::size_t q = 0;
-      while(q < m_local_columns.size() && m_local_columns[q] != v[m])
-        ++q;
-      if(q == m_local_columns.size())
+      // the entry of v[m] in the row (first seen, first listed): a position per vertex, reset
+      // after each row, so that a vertex of high valence costs linear, not quadratic, time
+      Index& q = m_local_position[v[m]];
+      if(q == invalid_index)
       {
+        q = static_cast<Index>(m_local_columns.size());
         m_local_columns.push_back(v[m]);
         m_local_values.push_back(x);
       }
@@ -381,6 +388,8 @@ private:
       if(m_mesh.has_face(h))                     // the edge opposite i in the face of h: i is v3 or v4
         add_hinge(Triangle_halfedges::next_in_face(h), 2, 3);
     }
+    for(Index c : m_local_columns)
+      m_local_position[c] = invalid_index;
     double sum = 0., abs_sum = 0.;
     for(double x : m_local_values) { sum += x; abs_sum += std::abs(x); }
     if(!(sum > 0.) || !std::isfinite(sum) || !(abs_sum <= max_sod_absolute_sum * sum))
@@ -401,6 +410,7 @@ private:
   std::vector<unsigned char> m_hinge_valid;
   std::vector<Index> m_local_columns;
   std::vector<double> m_local_values;
+  std::vector<Index> m_local_position;   // per vertex: its entry in the SOD row being assembled, or invalid_index
 };
 
 } // namespace internal
