@@ -6,9 +6,9 @@
 //
 // Tests that attack: the invariants of every pyramid, crafted and randomly edited pyramid
 // files, extreme finite coordinates, and a seeded property-based fuzz test of every public
-// function on random meshes (holes, components, isolated vertices, degenerate triangles,
-// huge and tiny coordinates, several channel types). CI also runs them under AddressSanitizer
-// and UndefinedBehaviorSanitizer.
+// function on random meshes (holes, components, fans around a vertex of high valence,
+// isolated vertices, degenerate triangles, huge and tiny coordinates, several channel types).
+// CI also runs them under AddressSanitizer and UndefinedBehaviorSanitizer.
 
 #include <catch2/catch.hpp>
 
@@ -306,6 +306,16 @@ TEST_CASE("seeded fuzzing: random meshes through every public function", "[attac
       Mesh other = smr_test::icosphere<Mesh>(1);
       for(auto v : vertices(other)) other.point(v) = other.point(v) + Vector_3(3, 0, 0);
       CGAL::copy_face_graph(other, m);
+    }
+    if(rng.get_int(0, 4) == 0)                                // a fan: a vertex of valence 40 to 200
+    {
+      const int d = rng.get_int(40, 201);
+      std::vector<Mesh::Vertex_index> rim;
+      for(int i = 0; i < d; ++i)
+        rim.push_back(m.add_vertex(Point_3(5 + std::cos(6.283 * i / d), std::sin(6.283 * i / d), rng.get_double(0, 0.1))));
+      const auto centre = m.add_vertex(Point_3(5, 0, 0.5));
+      for(int i = 0; i + 1 < d; ++i)
+        m.add_face(centre, rim[i], rim[i + 1]);
     }
     for(int i = rng.get_int(0, 3); i > 0; --i)
       m.add_vertex(Point_3(rng.get_double(), rng.get_double(), rng.get_double()));
