@@ -150,8 +150,8 @@ public:
     typedef typename GetGeomTraits<TriangleMesh, NamedParameters>::type     Geom_traits;
     typedef typename GetVertexPointMap<TriangleMesh, NamedParameters>::type Vertex_point_map;
 
-    if(static_cast<std::size_t>(CGAL::vertices(tm).size()) != number_of_vertices())
-      throw std::invalid_argument("Relaxation_operator::apply: the mesh has " + std::to_string(CGAL::vertices(tm).size())
+    if(internal::number_of_vertices_of(tm) != number_of_vertices())
+      throw std::invalid_argument("Relaxation_operator::apply: the mesh has " + std::to_string(internal::number_of_vertices_of(tm))
                                   + " vertices, the operator " + std::to_string(number_of_vertices()));
     const Geom_traits gt = choose_parameter<Geom_traits>(get_parameter(np, CGAL::internal_np::geom_traits));
     Vertex_point_map vpm = choose_parameter(get_parameter(np, CGAL::internal_np::vertex_point),

@@ -27,6 +27,11 @@ namespace CGAL {
 namespace Surface_mesh_multiresolution {
 namespace internal {
 
+// the number of vertices of a face graph, as vertices(g) lists them (found by ADL, so that
+// classes with a member vertices() can call it)
+template <typename FaceGraph>
+std::size_t number_of_vertices_of(const FaceGraph& g) { return static_cast<std::size_t>(vertices(g).size()); }
+
 template <typename TriangleMesh>
 struct Indexed_mesh
 {
