@@ -18,6 +18,7 @@
 #include <CGAL/Surface_mesh_multiresolution/Relaxation_operator.h>
 #include <CGAL/Surface_mesh_multiresolution/relax.h>
 #include <CGAL/Surface_mesh_multiresolution/Decomposition_visitor_base.h>
+#include <CGAL/Surface_mesh_multiresolution/Denoising_visitor_base.h>
 #include <CGAL/Surface_mesh_multiresolution/Pyramid.h>
 #include <CGAL/Surface_mesh_multiresolution/decompose.h>
 #include <CGAL/Surface_mesh_multiresolution/reconstruct.h>

@@ -385,3 +385,50 @@ TEST_CASE("adaptive reconstruction to a vertex count, and colour guidance", "[ad
   REQUIRE_THROWS_AS(SMR::reconstruct_adaptively(pyr, by_colour, -1.), std::invalid_argument);
   REQUIRE_THROWS_AS(SMR::reconstruct_adaptively(pyr, by_colour, 1., SMR::parameters::channel(std::size_t(2))), std::invalid_argument);
 }
+
+namespace {
+// records the passes it sees; cancels before pass `stop_at`
+struct Pass_recorder : SMR::Denoising_visitor_base
+{
+  std::vector<unsigned int>* passes = nullptr;
+  unsigned int stop_at = 1000000u;
+  unsigned int* finished = nullptr;
+  bool on_pass(unsigned int pass, unsigned int total)
+  {
+    CHECK(total == 6u);
+    passes->push_back(pass);
+    return pass < stop_at;
+  }
+  void on_finished(unsigned int total) { *finished = total; }
+};
+} // namespace
+
+TEST_CASE("denoise reports every pass to its visitor and can be cancelled, leaving the pyramid unchanged", "[applications][denoise]")
+{
+  Mesh m = smr_test::icosphere<Mesh>(3);
+  CGAL::Random rng(3);
+  for(auto v : vertices(m)) m.point(v) = m.point(v) + 0.01 * rng.get_double(-1, 1) * (m.point(v) - CGAL::ORIGIN);
+  const SMR::Pyramid<Mesh> pyr = SMR::decompose(m);
+  std::vector<unsigned int> seen;
+  unsigned int finished = 0;
+  Pass_recorder all;
+  all.passes = &seen;
+  all.finished = &finished;
+  SMR::Pyramid<Mesh> p = pyr;
+  CHECK(SMR::denoise(p, SMR::parameters::number_of_iterations(6u).visitor(all)) > 0.);
+  CHECK(seen == std::vector<unsigned int>({0, 1, 2, 3, 4, 5}));
+  CHECK(finished == 6u);
+  CHECK(std::as_const(p).details(1, 0) != std::as_const(pyr).details(1, 0));
+  // cancelled before the fourth pass: nothing changes
+  seen.clear();
+  finished = 0;
+  Pass_recorder cancel = all;
+  cancel.stop_at = 3;
+  SMR::Pyramid<Mesh> q = pyr;
+  CHECK(SMR::denoise(q, SMR::parameters::number_of_iterations(6u).visitor(cancel)) == 0.);
+  CHECK(seen == std::vector<unsigned int>({0, 1, 2, 3}));
+  CHECK(finished == 0u);
+  for(std::size_t j = 1; j <= pyr.number_of_levels(); ++j)
+    CHECK(std::as_const(q).details(j, 0) == std::as_const(pyr).details(j, 0));
+  CHECK(q.coarse_values() == pyr.coarse_values());
+}

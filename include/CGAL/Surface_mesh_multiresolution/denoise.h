@@ -13,6 +13,7 @@
 #include <CGAL/Surface_mesh_multiresolution/internal/level_transform.h>
 #include <CGAL/Surface_mesh_multiresolution/internal/relaxation_weights.h>
 #include <CGAL/Surface_mesh_multiresolution/decompose.h>
+#include <CGAL/Surface_mesh_multiresolution/Denoising_visitor_base.h>
 #include <CGAL/Surface_mesh_multiresolution/filter.h>
 #include <CGAL/Surface_mesh_multiresolution/reconstruct.h>
 #include <CGAL/Surface_mesh_multiresolution/parameters.h>
@@ -353,8 +354,13 @@ double estimate_noise(const Pyramid<TriangleMesh>& pyr, const NamedParameters& n
  *     \cgalParamType{unsigned int}
  *     \cgalParamDefault{`40`}
  *   \cgalParamNEnd
+ *   \cgalParamNBegin{visitor}
+ *     \cgalParamDescription{reports progress per pass and can cancel (the pyramid is then left unchanged and 0 is returned)}
+ *     \cgalParamType{a class with the functions of `Denoising_visitor_base`}
+ *     \cgalParamDefault{`Denoising_visitor_base()`}
+ *   \cgalParamNEnd
  * \cgalNamedParamsEnd
- * \returns the threshold of the first step (0 for a pyramid without levels)
+ * \returns the threshold of the first step (0 for a pyramid without levels, without passes, or when the visitor cancels)
  */
 template <typename TriangleMesh, typename NamedParameters = parameters::Default_named_parameters>
 double denoise(Pyramid<TriangleMesh>& pyr, const NamedParameters& np = parameters::default_values())
@@ -363,8 +369,11 @@ double denoise(Pyramid<TriangleMesh>& pyr, const NamedParameters& np = parameter
   using parameters::get_parameter;
   if(pyr.number_of_levels() == 0)
     return 0.;
+  typedef typename CGAL::internal_np::Lookup_named_param_def<CGAL::internal_np::visitor_t, NamedParameters,
+                                                             Denoising_visitor_base>::type Visitor;
   const std::size_t c = internal::chosen_channel(pyr, np, "denoise");
   const unsigned int passes = choose_parameter(get_parameter(np, CGAL::internal_np::number_of_iterations), 40u);
+  Visitor visitor = choose_parameter<Visitor>(get_parameter(np, CGAL::internal_np::visitor));
   if(passes == 0)
     return 0.;
   const std::size_t dim = pyr.channel_dimension(c);
@@ -386,6 +395,8 @@ double denoise(Pyramid<TriangleMesh>& pyr, const NamedParameters& np = parameter
   double first_threshold = -1.;
   for(unsigned int step = 0; step < 2 * passes; ++step)
   {
+    if(step % 2 == 0 && !visitor.on_pass(step / 2, passes))
+      return 0.;                                     // cancelled: the pyramid is untouched
     internal::analyse_level(finest, finest.weights, dim, x, d, corrections);
     if(c == 0)
       internal::smoothed_vertex_normals(finest.weights, x, F, normals);
@@ -399,6 +410,7 @@ double denoise(Pyramid<TriangleMesh>& pyr, const NamedParameters& np = parameter
     internal::synthesize_level(finest, finest.weights, dim, d.data(), {}, is_odd, state, prediction);
     x.swap(state);
   }
+  visitor.on_finished(passes);
   internal::analyse_again(pyr, c, x);   // the pyramid now describes the result at every level
   return first_threshold;
 }
