@@ -37,15 +37,17 @@ namespace internal {
 //  (5) collapse targets: one per odd row, an even row of M_k, no two the same;
 //  (6) faces: F_K below n_K; |F_k| = |F_{k+1}| + 3 |removed faces|; removed positions
 //      increasing below |F_k| / 3; removed faces hold rows of M_k, exactly one odd, with its
-//      collapse target; renamed corners distinct, below |F_k|, not in a removed face, renamed
-//      to an odd row whose collapse target is the corner's vertex in M_{k+1}; every face of every F_k has three different corners and no
-//      directed edge is in two faces (each M_k is a halfedge mesh);
+//      collapse target; renamed corners distinct, below |F_k|, not in a removed face,
+//      renamed to an odd row whose collapse target is the corner's vertex in M_{k+1}; every
+//      face of every F_k has three different corners and no directed edge is in two faces
+//      (each M_k is a halfedge mesh);
 //  (7) collapses: on M_k, every odd vertex o is joined to its target e by an edge, no two
 //      odd vertices are neighbours (the independent set of the selection), a border vertex
-//      collapses along a border edge, and the link condition holds: the collapses are those decompose() may accept,
-//      which the vertex splits of an adaptive reconstruction rely on.
-// The checks touch every record once per level (the face checks replay the vertex splits):
-// O(size of the pyramid) apart from sorting each vertex's out-going edges.
+//      collapses along a border edge, and the link condition holds: the collapses are those
+//      decompose() may accept, which the vertex splits of an adaptive reconstruction rely on.
+// The checks touch every record once per level (the face checks replay the vertex splits and
+// build each level's halfedges): O(size of the pyramid) apart from sorting each vertex's
+// out-going edges.
 
 inline bool strictly_increasing_below(const std::vector<Index>& v, std::size_t bound)
 {
