@@ -9,9 +9,12 @@
 // filtering (best range sigma and normal iteration count), plus BNF's default run and its time. A peer's best is
 // chosen against the clean mesh, separately for E_a and E_v: an upper bound of what a user
 // gets. All rows are measured by this program.
-// Usage: bench_denoise [noisy1 clean1 ...] [--synthetic mesh sigma ...]
+// Usage: bench_denoise [noisy1 clean1 ...] [--synthetic mesh sigma ...] [--isotropic mesh sigma ...]
 //   --synthetic: the clean mesh with Gaussian noise of deviation sigma (in mean edge lengths)
 //   along the vertex normals (fixed seed), like the standard pairs.
+//   --isotropic: the clean mesh with Gaussian noise of deviation sigma on each coordinate.
+//   --write DIR (before the meshes): writes NAME_noisy.ply, NAME_bnf.ply (BNF at its best
+//   parameters for E_a) and NAME_smr.ply (SMR::denoise) of every pair into DIR, for figures.
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/Surface_mesh_multiresolution.h>
@@ -27,6 +30,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cctype>
 #include <cstring>
 #include <functional>
 #include <iostream>
@@ -204,6 +208,17 @@ Mesh bilateral_normal_filtering(const Mesh& noisy, double sigma_s, int normal_it
   return out;
 }
 
+std::string output_folder;   // --write
+
+void write_result(const std::string& name, const char* suffix, const Mesh& m)
+{
+  if(output_folder.empty()) return;
+  std::string stem;   // the name with its extension dropped, spaces and signs as underscores
+  for(char c : name.substr(0, name.rfind(".obj"))) stem += std::isalnum(static_cast<unsigned char>(c)) || c == '.' ? c : '_';
+  if(!CGAL::IO::write_polygon_mesh(output_folder + "/" + stem + suffix, m, CGAL::parameters::use_binary_mode(true)))
+    std::cerr << "cannot write " << output_folder << "/" << stem << suffix << "\n";
+}
+
 void evaluate(const std::string& name, const Mesh& noisy, const Mesh& clean)
 {
   Tree tree(faces(clean).first, faces(clean).second, clean);
@@ -245,6 +260,10 @@ void evaluate(const std::string& name, const Mesh& noisy, const Mesh& clean)
   const Mesh bnf_default = bilateral_normal_filtering(noisy, 0.35, 20, 10);
   const auto t4 = std::chrono::steady_clock::now();
   const Errors eb = errors(bnf_default, clean, tree, edge);
+  write_result(name, "_noisy.ply", noisy);
+  write_result(name, "_smr.ply", dn);
+  if(!output_folder.empty())
+    write_result(name, "_bnf.ply", bilateral_normal_filtering(noisy, grid[std::size_t(bnf.ea_param)].first, grid[std::size_t(bnf.ea_param)].second, 10));
   std::printf("| %s | %.2f / %.3f | %.3f | **%.2f / %.3f** | %.2f / %.3f | %.2f / %.3f | %.2f / %.3f | %.2f / %.3f | %.2f / %.3f (s %.2f, %d it) | %.2f / %.3f | %.2f s | %.2f s |\n",
               name.c_str(), e0.ea, e0.ev, sigma / edge, e1.ea, e1.ev, st.ea_best.ea, st.ev_best.ev,
               lap.ea_best.ea, lap.ev_best.ev, tau.ea_best.ea, tau.ev_best.ev, ss.ea_best.ea, ss.ev_best.ev,
@@ -262,7 +281,14 @@ int main(int argc, char** argv)
   std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   for(int i = 1; i < argc; )
   {
-    if(std::strcmp(argv[i], "--synthetic") == 0 && i + 2 < argc)
+    if(std::strcmp(argv[i], "--write") == 0 && i + 1 < argc)
+    {
+      output_folder = argv[i + 1];
+      i += 2;
+      continue;
+    }
+    const bool along_normals = std::strcmp(argv[i], "--synthetic") == 0;
+    if((along_normals || std::strcmp(argv[i], "--isotropic") == 0) && i + 2 < argc)
     {
       Mesh clean;
       const double s = std::atof(argv[i + 2]);
@@ -274,9 +300,10 @@ int main(int argc, char** argv)
       Mesh noisy = clean;
       std::mt19937 rng(12345);
       std::normal_distribution<double> g(0., s * edge);
-      for(auto v : vertices(noisy)) noisy.point(v) = noisy.point(v) + g(rng) * get(vn, v);
+      for(auto v : vertices(noisy))
+        noisy.point(v) = noisy.point(v) + (along_normals ? g(rng) * get(vn, v) : K::Vector_3(g(rng), g(rng), g(rng)));
       std::string name = argv[i + 1];
-      name = name.substr(name.find_last_of('/') + 1) + " + noise " + argv[i + 2];
+      name = name.substr(name.find_last_of('/') + 1) + (along_normals ? " + noise " : " + isotropic noise ") + argv[i + 2];
       evaluate(name, noisy, clean);
       i += 3;
       continue;

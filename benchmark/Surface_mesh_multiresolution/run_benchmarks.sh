@@ -37,11 +37,13 @@ if [ -d "$DATA" ]; then
     pairs+=("$BUILD/data/gd_${m}_noisy.obj" "$BUILD/data/gd_${m}_original.obj")
   done
 fi
-# CGAL meshes with Gaussian noise along the normals, 0.2 and 0.5 mean edge lengths
+# CGAL meshes with Gaussian noise along the normals and isotropic, 0.2 and 0.5 mean edge lengths
 MESHES="$BUILD/cgal_data/data/meshes"
-for m in elephant.off armadillo.off; do
-  for s in 0.2 0.5; do
-    [ -f "$MESHES/$m" ] && pairs+=(--synthetic "$MESHES/$m" "$s")
+for kind in --synthetic --isotropic; do
+  for m in elephant.off armadillo.off; do
+    for s in 0.2 0.5; do
+      [ -f "$MESHES/$m" ] && pairs+=("$kind" "$MESHES/$m" "$s")
+    done
   done
 done
 echo

@@ -338,8 +338,10 @@ double estimate_noise(const Pyramid<TriangleMesh>& pyr, const NamedParameters& n
  *
  * For the geometry, a last stage restores sharp creases that the passes leave rounded:
  * bilateral filtering of the face normals (range \f$ \sigma = 0.2 \f$) and vertex updates that
- * fit them, with as many normal iterations (at most 40) as keep the result within 1.02 times
- * the RMS distance to the noisy input that the passes reached (see the user manual).
+ * fit them. Where the filtered normals settle into flat patches (the result stops moving away
+ * from the noisy input between 20 and 40 normal iterations: a shape with creases), 40
+ * iterations are taken; on curved shapes, which the filter would flatten into facets, at most
+ * one (see the user manual, section Denoising).
  *
  * Afterwards the pyramid describes the denoised channel at every level (all levels are
  * analysed again from the result with the pyramid's own weights), so `reconstruct()` gives it
@@ -358,7 +360,7 @@ double estimate_noise(const Pyramid<TriangleMesh>& pyr, const NamedParameters& n
  *   \cgalParamNBegin{number_of_iterations}
  *     \cgalParamDescription{the number of passes (0 changes nothing)}
  *     \cgalParamType{unsigned int}
- *     \cgalParamDefault{`40`}
+ *     \cgalParamDefault{`30`}
  *   \cgalParamNEnd
  *   \cgalParamNBegin{visitor}
  *     \cgalParamDescription{reports progress per pass and can cancel (the pyramid is then left unchanged and 0 is returned)}
@@ -378,7 +380,7 @@ double denoise(Pyramid<TriangleMesh>& pyr, const NamedParameters& np = parameter
   typedef typename CGAL::internal_np::Lookup_named_param_def<CGAL::internal_np::visitor_t, NamedParameters,
                                                              Denoising_visitor_base>::type Visitor;
   const std::size_t c = internal::chosen_channel(pyr, np, "denoise");
-  const unsigned int passes = choose_parameter(get_parameter(np, CGAL::internal_np::number_of_iterations), 40u);
+  const unsigned int passes = choose_parameter(get_parameter(np, CGAL::internal_np::number_of_iterations), 30u);
   Visitor visitor = choose_parameter<Visitor>(get_parameter(np, CGAL::internal_np::visitor));
   if(passes == 0)
     return 0.;
@@ -418,7 +420,7 @@ double denoise(Pyramid<TriangleMesh>& pyr, const NamedParameters& np = parameter
     x.swap(state);
   }
   if(c == 0)                            // the geometry: sharp creases back where the data support them
-    internal::Crease_restoration(F, n0).run(noisy, x);
+    internal::Crease_restoration(F, n0).run(noisy, x, first_threshold / universal);
   visitor.on_finished(passes);
   internal::analyse_again(pyr, c, x);   // the pyramid now describes the result at every level
   return first_threshold;
