@@ -407,7 +407,7 @@ double denoise(Pyramid<TriangleMesh>& pyr, const NamedParameters& np = parameter
     if(step % 2 == 0 && !visitor.on_pass(step / 2, passes))
       return 0.;                                     // cancelled: the pyramid is untouched
     internal::analyse_level(finest, finest.weights, dim, x, d, corrections);
-    if(c == 0)
+    if(c == 0 && step % 2 == 0)   // the normals turn slowly: those of the first step of a pass serve both
       internal::smoothed_vertex_normals(finest.weights, x, F, normals);
     const double t = universal * internal::noise_of_finest_details(finest.weights, factor, d, dim, c == 0 ? &normals : nullptr);
     if(first_threshold < 0.)
