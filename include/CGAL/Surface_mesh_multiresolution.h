@@ -22,6 +22,7 @@
 #include <CGAL/Surface_mesh_multiresolution/Pyramid.h>
 #include <CGAL/Surface_mesh_multiresolution/decompose.h>
 #include <CGAL/Surface_mesh_multiresolution/reconstruct.h>
+#include <CGAL/Surface_mesh_multiresolution/Adaptive_criterion.h>
 #include <CGAL/Surface_mesh_multiresolution/reconstruct_adaptively.h>
 #include <CGAL/Surface_mesh_multiresolution/pyramid_io.h>
 #include <CGAL/Surface_mesh_multiresolution/filter.h>

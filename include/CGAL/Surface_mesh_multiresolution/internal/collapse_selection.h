@@ -222,10 +222,12 @@ void sort_candidates(std::vector<std::uint64_t>& c, const Candidate_key& key, co
 }
 
 // The selection loop of select_collapses(): candidates in order, each accepted if its ends are
-// free and its collapse valid.
+// free and its collapse valid; the first `considered` candidates, more (half as many again
+// each time) while fewer than `minimum` are accepted.
 inline void take_greedily(const Triangle_halfedges& th, const double* xyz, const std::vector<std::uint64_t>& candidates,
                           const Candidate_key& key, std::size_t budget, const std::vector<unsigned char>& on_border,
-                          std::vector<unsigned char>& locked, std::vector<Collapse>& accepted)
+                          std::vector<unsigned char>& locked, std::vector<Collapse>& accepted, std::size_t considered,
+                          std::size_t minimum)
 {
   // The candidates come in cost order, that is at random places of the level's arrays: on a
   // mesh larger than the cache each test waits for a dozen misses. Why by hand: the loop keeps
@@ -238,7 +240,8 @@ inline void take_greedily(const Triangle_halfedges& th, const double* xyz, const
   constexpr std::size_t window = 16, ring_step = window / 2, position_step = 3, gather_ahead = 32;
   Pending pending[window];
   std::size_t head = 0, count = 0, scan = 0;
-  const std::size_t nc = candidates.size();
+  const std::size_t all = candidates.size();
+  std::size_t nc = (std::min)(all, considered);
   auto prefetch_ring = [&](Index v) {
     prefetch(th.out.data() + th.out_offsets[v]);
     prefetch(th.out_target.data() + th.out_offsets[v]);
@@ -262,6 +265,11 @@ inline void take_greedily(const Triangle_halfedges& th, const double* xyz, const
       prefetch(th.out_offsets.data() + o);
       prefetch(th.out_offsets.data() + e);
       prefetch(th.twin.data() + h);
+    }
+    if(count == 0 && scan == nc && nc < all && accepted.size() < minimum)
+    {
+      nc = (std::min)(all, nc + (nc + 1) / 2);              // too few accepted under the cap: look further
+      continue;
     }
     if(count == 0)
       break;
@@ -346,7 +354,12 @@ void select_collapses(const Triangle_halfedges& th, const double* xyz, const Cos
   const std::vector<std::uint64_t> candidates = sorted_candidates(th, cost, on_border, key);
   locked.assign(th.n, 0);
   accepted.clear();
-  take_greedily(th, xyz, candidates, key, budget, on_border, locked, accepted);
+  // Only the th.n cheapest candidates (of about 6 th.n) are considered, unless fewer than
+  // th.n / 16 collapses are accepted among them: a level then leaves an expensive collapse to a
+  // coarser level, where its cost is compared with costlier ones, instead of taking it because
+  // its ends happen to be free. Measured (bench_quality, adaptive meshes at 25 / 5 / 1 %): RMS
+  // error 4-11 % lower; 7 more levels on the bunny and the dragon, dragon decomposition +4 %.
+  take_greedily(th, xyz, candidates, key, budget, on_border, locked, accepted, th.n, th.n / 16 + 1);
 }
 
 } // namespace internal
