@@ -160,5 +160,31 @@ int main(int argc, char** argv)
       std::fflush(stdout);
     }
   }
+  // the approximation error as a threshold: what it bounds
+  std::printf("\nAdaptive_criterion::APPROXIMATION_ERROR with a threshold t (1e-3 of the diagonal): vertices kept, largest distance from the input vertices to the result / t, two-sided Hausdorff / t\n\n");
+  std::printf("| mesh | t = 0.5 | t = 1 | t = 2 | t = 4 | t = 8 |\n|---|---|---|---|---|---|\n");
+  for(const std::string& file : files)
+  {
+    Mesh mesh;
+    if(!CGAL::IO::read_polygon_mesh(file, mesh) || !CGAL::is_triangle_mesh(mesh) || num_vertices(mesh) < 100)
+      continue;
+    CGAL::Polygon_mesh_processing::remove_isolated_vertices(mesh);
+    mesh.collect_garbage();
+    const CGAL::Bbox_3 b = CGAL::Polygon_mesh_processing::bbox(mesh);
+    const double diagonal = std::sqrt(CGAL::square(b.xmax() - b.xmin()) + CGAL::square(b.ymax() - b.ymin()) + CGAL::square(b.zmax() - b.zmin()));
+    Tree tree(faces(mesh).first, faces(mesh).second, mesh);
+    tree.accelerate_distance_queries();
+    const SMR::Pyramid<Mesh> pyr = SMR::decompose(mesh, SMR::parameters::minimum_number_of_vertices(num_vertices(mesh) / 200));
+    std::printf("| %s |", file.substr(file.find_last_of('/') + 1).c_str());
+    for(double t : {0.5, 1., 2., 4., 8.})
+    {
+      Mesh out;
+      SMR::reconstruct_adaptively(pyr, out, t * 1e-3 * diagonal, SMR::parameters::adaptive_criterion(SMR::Adaptive_criterion::APPROXIMATION_ERROR));
+      const Error e = error(mesh, tree, out, diagonal);
+      std::printf(" %zu v, %.2f, %.2f |", e.vertices, e.max / t, e.hausdorff / t);
+    }
+    std::printf("\n");
+    std::fflush(stdout);
+  }
   return 0;
 }

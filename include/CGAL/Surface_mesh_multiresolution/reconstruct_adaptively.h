@@ -395,6 +395,88 @@ std::vector<Index> adaptive_faces(const Pyramid<TriangleMesh>& pyr, const Adapti
   return F;
 }
 
+// What every adaptive reconstruction of one pyramid shares: the hierarchy, the importance of
+// every odd vertex under the chosen criterion (and the ranking a vertex budget uses), the exact
+// values of every input vertex (computed on first use); then any number of outputs.
+template <typename TriangleMesh>
+class Adaptive_reconstruction
+{
+public:
+  template <typename NamedParameters>
+  Adaptive_reconstruction(const Pyramid<TriangleMesh>& pyr, const NamedParameters& np, const char* function) : m_pyr(pyr)
+  {
+    using parameters::choose_parameter;
+    using parameters::get_parameter;
+    const std::size_t guide = choose_parameter(get_parameter(np, internal_np::channel), std::size_t(0));
+    if(guide >= pyr.number_of_channels())
+      throw std::invalid_argument(std::string(function) + ": channel " + std::to_string(guide) + " does not exist");
+    const Adaptive_criterion criterion = choose_parameter(get_parameter(np, internal_np::adaptive_criterion),
+                                                          Adaptive_criterion::DETAIL_LENGTH);
+    if(criterion == Adaptive_criterion::APPROXIMATION_ERROR && guide != 0)
+      throw std::invalid_argument(std::string(function) + ": the approximation error is measured on the geometry (channel 0)");
+    m_drop_isolated = choose_parameter(get_parameter(np, internal_np::remove_isolated_vertices), false);
+    build_adaptive_hierarchy(pyr, m_h);
+    if(criterion == Adaptive_criterion::APPROXIMATION_ERROR)
+      approximation_errors(pyr, m_h, m_importance, m_ranking);
+    else
+      m_importance = odd_vertex_importance(pyr, guide);
+  }
+
+  std::vector<unsigned char> keep_above(double threshold) const
+  {
+    return without_isolated(dependency_closure(m_pyr, m_h, m_importance, threshold));
+  }
+
+  // `threshold` receives the importance of the last vertex kept
+  std::vector<unsigned char> keep_for(std::size_t vertices, double& threshold) const
+  {
+    return without_isolated(keep_for_budget(m_pyr, m_h, m_ranking.empty() ? m_importance : m_ranking, vertices, threshold));
+  }
+
+  // the kept vertices with their faces and exact values into `out`
+  template <typename OutputMesh, typename NamedParameters>
+  void write(const std::vector<unsigned char>& keep, OutputMesh& out, const NamedParameters& np)
+  {
+    std::vector<Index> verts;
+    std::vector<Index> F = adaptive_faces(m_pyr, m_h, keep, verts);
+    if(m_values.empty())
+    {
+      std::vector<Index> no_faces;
+      reconstruct_arrays(m_pyr, 0, m_values, no_faces, false);   // values only; level 0's rows are the input numbers
+    }
+    write_output_mesh(m_pyr, verts, [&](std::vector<Index>& faces) { faces.swap(F); },
+                      [&](std::vector<std::vector<double> >& values) {
+                        values.resize(m_values.size());
+                        for(std::size_t c = 0; c < m_values.size(); ++c)
+                        {
+                          const std::size_t dim = m_pyr.dimensions()[c];
+                          values[c].resize(verts.size() * dim);
+                          for(std::size_t r = 0; r < verts.size(); ++r)
+                            copy_values(m_values[c].data() + std::size_t(verts[r]) * dim, dim, values[c].data() + r * dim);
+                        }
+                      },
+                      out, np);
+  }
+
+private:
+  std::vector<unsigned char> without_isolated(std::vector<unsigned char> keep) const
+  {
+    if(m_drop_isolated)
+    {
+      std::vector<unsigned char> has_face(keep.size(), 0);
+      for(Index v : m_h.finest_faces) has_face[v] = 1;
+      for(std::size_t v = 0; v < keep.size(); ++v) keep[v] = keep[v] && has_face[v];
+    }
+    return keep;
+  }
+
+  const Pyramid<TriangleMesh>& m_pyr;
+  Adaptive_hierarchy m_h;
+  std::vector<std::vector<double> > m_importance, m_ranking;   // ranking: for a vertex budget, if not the importance
+  std::vector<std::vector<double> > m_values;
+  bool m_drop_isolated = false;
+};
+
 } // namespace internal
 
 /*!
@@ -464,58 +546,53 @@ template <typename TriangleMesh, typename OutputMesh, typename NamedParameters =
 double reconstruct_adaptively(const Pyramid<TriangleMesh>& pyr, OutputMesh& out, double threshold,
                               const NamedParameters& np = parameters::default_values())
 {
-  using parameters::choose_parameter;
   using parameters::get_parameter;
-  typedef internal::Index Index;
   if(!(threshold >= 0.))
     throw std::invalid_argument("reconstruct_adaptively: the threshold must be non-negative");
-  const std::size_t guide = choose_parameter(get_parameter(np, internal_np::channel), std::size_t(0));
-  if(guide >= pyr.number_of_channels())
-    throw std::invalid_argument("reconstruct_adaptively: channel " + std::to_string(guide) + " does not exist");
-
-  const Adaptive_criterion criterion = choose_parameter(get_parameter(np, internal_np::adaptive_criterion),
-                                                        Adaptive_criterion::DETAIL_LENGTH);
-  if(criterion == Adaptive_criterion::APPROXIMATION_ERROR && guide != 0)
-    throw std::invalid_argument("reconstruct_adaptively: the approximation error is measured on the geometry (channel 0)");
-  const bool drop_isolated = choose_parameter(get_parameter(np, internal_np::remove_isolated_vertices), false);
-
-  // hierarchy, importance, budget search or dependency closure, faces, values
-  internal::Adaptive_hierarchy h;
-  internal::build_adaptive_hierarchy(pyr, h);
-  std::vector<std::vector<double> > importance, ranking;     // ranking: for a vertex budget, if not the importance
-  if(criterion == Adaptive_criterion::APPROXIMATION_ERROR)
-    internal::approximation_errors(pyr, h, importance, ranking);
-  else
-    importance = internal::odd_vertex_importance(pyr, guide);
+  internal::Adaptive_reconstruction<TriangleMesh> adaptive(pyr, np, "reconstruct_adaptively");
   std::vector<unsigned char> keep;
   const auto target = get_parameter(np, internal_np::target_number_of_vertices);
   if constexpr(!std::is_same<std::decay_t<decltype(target)>, CGAL::internal_np::Param_not_found>::value)
-    keep = internal::keep_for_budget(pyr, h, ranking.empty() ? importance : ranking, std::size_t(target), threshold);
+    keep = adaptive.keep_for(std::size_t(target), threshold);
   else
-    keep = internal::dependency_closure(pyr, h, importance, threshold);
-  if(drop_isolated)
-  {
-    std::vector<unsigned char> has_face(keep.size(), 0);
-    for(Index v : h.finest_faces) has_face[v] = 1;
-    for(std::size_t v = 0; v < keep.size(); ++v) keep[v] = keep[v] && has_face[v];
-  }
-  std::vector<Index> verts;
-  std::vector<Index> F = internal::adaptive_faces(pyr, h, keep, verts);
-  // exact values of the kept vertices: those of the full reconstruction
-  internal::write_output_mesh(pyr, verts, [&](std::vector<Index>& faces) { faces.swap(F); },
-                              [&](std::vector<std::vector<double> >& values) {
-                                std::vector<Index> no_faces;
-                                internal::reconstruct_arrays(pyr, 0, values, no_faces, false);   // values only
-                                for(std::size_t c = 0; c < values.size(); ++c)   // level 0's rows are the input numbers
-                                {
-                                  const std::size_t dim = pyr.dimensions()[c];
-                                  for(std::size_t r = 0; r < verts.size(); ++r)
-                                    internal::copy_values(values[c].data() + std::size_t(verts[r]) * dim, dim, values[c].data() + r * dim);
-                                  values[c].resize(verts.size() * dim);
-                                }
-                              },
-                              out, np);
+    keep = adaptive.keep_above(threshold);
+  adaptive.write(keep, out, np);
   return threshold;
+}
+
+/*!
+ * \ingroup PkgSurfaceMeshMultiresolutionRef
+ * a chain of levels of detail in one pass: `outputs[i]` receives the adaptive reconstruction of
+ * `pyr` to `vertex_counts[i]` vertices, as `reconstruct_adaptively()` with
+ * `target_number_of_vertices(vertex_counts[i])` gives it, with the hierarchy, the importance of
+ * every vertex and the exact values computed once for the whole chain.
+ *
+ * \param pyr the pyramid
+ * \param vertex_counts the vertex budgets (any order)
+ * \param outputs resized to as many meshes as budgets; each emptied first
+ * \param np the named parameters of `reconstruct_adaptively()` but `target_number_of_vertices`:
+ *        `adaptive_criterion`, `channel`, `remove_isolated_vertices`, `vertex_point_map`,
+ *        `geom_traits`, and `vertex_attribute_maps` with a single budget only (the maps belong
+ *        to one output mesh)
+ * \throws std::invalid_argument as `reconstruct_adaptively()`, and if `vertex_attribute_maps` is
+ *         given with several budgets
+ */
+template <typename TriangleMesh, typename OutputMesh, typename NamedParameters = parameters::Default_named_parameters>
+void extract_levels_of_detail(const Pyramid<TriangleMesh>& pyr, const std::vector<std::size_t>& vertex_counts,
+                              std::vector<OutputMesh>& outputs, const NamedParameters& np = parameters::default_values())
+{
+  using parameters::get_parameter;
+  const auto maps = get_parameter(np, internal_np::vertex_attribute_maps);
+  if constexpr(!std::is_same<std::decay_t<decltype(maps)>, CGAL::internal_np::Param_not_found>::value)
+    if(vertex_counts.size() > 1)
+      throw std::invalid_argument("extract_levels_of_detail: vertex_attribute_maps are maps of one mesh; give one budget per call");
+  internal::Adaptive_reconstruction<TriangleMesh> adaptive(pyr, np, "extract_levels_of_detail");
+  outputs.resize(vertex_counts.size());
+  for(std::size_t i = 0; i < vertex_counts.size(); ++i)
+  {
+    double threshold = 0.;
+    adaptive.write(adaptive.keep_for(vertex_counts[i], threshold), outputs[i], np);
+  }
 }
 
 } // namespace Surface_mesh_multiresolution
