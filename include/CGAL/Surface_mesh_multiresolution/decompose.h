@@ -294,8 +294,9 @@ std::vector<std::vector<double> > read_input_values(const Indexed_mesh<TriangleM
  * Level \f$ k \f$ goes from \f$ M_k \f$ (\f$ M_0 \f$ = `tm`) to \f$ M_{k+1} \f$: a greedy independent
  * set of half-edge collapses \f$ o \to e \f$ is chosen in increasing Garland-Heckbert cost
  * \f$ (Q_o + Q_e)(p_e) \f$ (any SMS cost policy through `get_cost`; quadrics accumulate over the
- * levels); a collapse is accepted when both ends are free, the link condition holds and no
- * face flips, and the closed 1-ring of \f$ o \f$ is then locked. Border vertices only collapse
+ * levels); among the \f$ n \f$ cheapest candidates of a level of \f$ n \f$ vertices (more while
+ * fewer than \f$ n/16 \f$ are accepted), a collapse is accepted when both ends are free, the
+ * link condition holds and no face flips, and the closed 1-ring of \f$ o \f$ is then locked. Border vertices only collapse
  * along border edges. The relaxation weights \f$ \lambda^k \f$ are computed on \f$ M_k \f$, the
  * details of every vertex and every channel are stored, then the odd vertices are collapsed
  * (the kept vertex keeps its position, so every \f$ M_k \f$ is a subset of the input's vertices).
