@@ -78,6 +78,19 @@ Error error(const Mesh& input, const Tree& input_tree, const Mesh& approx, doubl
   return e;
 }
 
+// reads a triangle mesh of 100 vertices or more without its unreferenced vertices (bun_zipper.ply
+// has 1,113: they are not what the peers count); `diagonal`: that of its bounding box
+bool load(const std::string& file, Mesh& mesh, double& diagonal)
+{
+  if(!CGAL::IO::read_polygon_mesh(file, mesh) || !CGAL::is_triangle_mesh(mesh) || num_vertices(mesh) < 100)
+    return false;
+  CGAL::Polygon_mesh_processing::remove_isolated_vertices(mesh);
+  mesh.collect_garbage();
+  const CGAL::Bbox_3 b = CGAL::Polygon_mesh_processing::bbox(mesh);
+  diagonal = std::sqrt(CGAL::square(b.xmax() - b.xmin()) + CGAL::square(b.ymax() - b.ymin()) + CGAL::square(b.zmax() - b.zmin()));
+  return true;
+}
+
 int main(int argc, char** argv)
 {
   std::vector<std::string> files;
@@ -91,16 +104,12 @@ int main(int argc, char** argv)
   for(const std::string& file : files)
   {
     Mesh mesh;
-    if(!CGAL::IO::read_polygon_mesh(file, mesh) || !CGAL::is_triangle_mesh(mesh) || num_vertices(mesh) < 100)
+    double diagonal = 0.;
+    if(!load(file, mesh, diagonal))
     {
       std::cerr << "cannot read " << file << " as a triangle mesh: skipped\n";
       continue;
     }
-    // unreferenced vertices (bun_zipper.ply has 1,113) are not what the peers count
-    CGAL::Polygon_mesh_processing::remove_isolated_vertices(mesh);
-    mesh.collect_garbage();
-    const CGAL::Bbox_3 b = CGAL::Polygon_mesh_processing::bbox(mesh);
-    const double diagonal = std::sqrt(CGAL::square(b.xmax() - b.xmin()) + CGAL::square(b.ymax() - b.ymin()) + CGAL::square(b.zmax() - b.zmin()));
     Tree tree(faces(mesh).first, faces(mesh).second, mesh);
     tree.accelerate_distance_queries();
     const std::size_t n = num_vertices(mesh);
@@ -166,12 +175,9 @@ int main(int argc, char** argv)
   for(const std::string& file : files)
   {
     Mesh mesh;
-    if(!CGAL::IO::read_polygon_mesh(file, mesh) || !CGAL::is_triangle_mesh(mesh) || num_vertices(mesh) < 100)
+    double diagonal = 0.;
+    if(!load(file, mesh, diagonal))
       continue;
-    CGAL::Polygon_mesh_processing::remove_isolated_vertices(mesh);
-    mesh.collect_garbage();
-    const CGAL::Bbox_3 b = CGAL::Polygon_mesh_processing::bbox(mesh);
-    const double diagonal = std::sqrt(CGAL::square(b.xmax() - b.xmin()) + CGAL::square(b.ymax() - b.ymin()) + CGAL::square(b.zmax() - b.zmin()));
     Tree tree(faces(mesh).first, faces(mesh).second, mesh);
     tree.accelerate_distance_queries();
     const SMR::Pyramid<Mesh> pyr = SMR::decompose(mesh, SMR::parameters::minimum_number_of_vertices(num_vertices(mesh) / 200));
