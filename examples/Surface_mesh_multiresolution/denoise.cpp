@@ -41,7 +41,7 @@ int main(int argc, char** argv)
 {
   Mesh noisy, clean;
   const std::string filename = argc > 1 ? argv[1] : CGAL::data_file_path("meshes/fandisk.off");
-  if(!CGAL::IO::read_polygon_mesh(filename, noisy) || !CGAL::is_triangle_mesh(noisy)) {
+  if(!CGAL::IO::read_polygon_mesh(filename, noisy) || !CGAL::is_triangle_mesh(noisy) || faces(noisy).empty()) {
     std::cerr << "Invalid input: " << filename << "\n"; return EXIT_FAILURE;
   }
   double edge = 0;

@@ -18,7 +18,7 @@ int main(int argc, char** argv)
 {
   const std::string filename = argc > 1 ? argv[1] : CGAL::data_file_path("meshes/armadillo.off");
   Mesh mesh;
-  if(!CGAL::IO::read_polygon_mesh(filename, mesh) || !CGAL::is_triangle_mesh(mesh)) {
+  if(!CGAL::IO::read_polygon_mesh(filename, mesh) || !CGAL::is_triangle_mesh(mesh) || faces(mesh).empty()) {
     std::cerr << "Invalid input: " << filename << "\n"; return EXIT_FAILURE;
   }
   const SMR::Pyramid<Mesh> pyr = SMR::decompose(mesh);

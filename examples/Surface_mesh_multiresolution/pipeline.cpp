@@ -7,6 +7,8 @@
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/Surface_mesh_multiresolution.h>
 #include <CGAL/boost/graph/IO/polygon_mesh_io.h>
+#include <CGAL/Surface_mesh/IO/PLY.h>
+#include <fstream>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -42,8 +44,11 @@ int main(int argc, char** argv)
 {
   const std::string filename = argc > 1 ? argv[1] : CGAL::data_file_path("meshes/bunny00.off");
   Mesh mesh;
-  if(!CGAL::IO::read_polygon_mesh(filename, mesh) || !CGAL::is_triangle_mesh(mesh)) {
-    std::cerr << "Invalid input: " << filename << "\n"; return EXIT_FAILURE;
+  std::ifstream ply(filename, std::ios::binary);   // a PLY's colours: read_PLY keeps them (as "v:color"), read_polygon_mesh not
+  const bool is_ply = filename.size() > 4 && filename.compare(filename.size() - 4, 4, ".ply") == 0;
+  if(!(is_ply ? CGAL::IO::read_PLY(ply, mesh) : CGAL::IO::read_polygon_mesh(filename, mesh)) || !CGAL::is_triangle_mesh(mesh)
+     || faces(mesh).empty()) {
+    std::cerr << "Invalid input: " << filename << " (a triangle mesh with faces is needed)\n"; return EXIT_FAILURE;
   }
   auto [color, has_color] = mesh.property_map<Mesh::Vertex_index, Color>("v:color");
   if(!has_color) {   // no colours in the file: stripes across the model, to guide the adaptive step
