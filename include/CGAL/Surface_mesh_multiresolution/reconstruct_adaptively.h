@@ -203,17 +203,26 @@ void approximation_errors(const Pyramid<TriangleMesh>& pyr, const Adaptive_hiera
   auto distance_to = [&](const double* p, const Index* f) {
     return squared_distance_to_triangle(p, &x[3 * std::size_t(f[0])], &x[3 * std::size_t(f[1])], &x[3 * std::size_t(f[2])]);
   };
-  // the faces of o's fan: those of its star without t, o renamed t (the target alone if none)
-  auto fan_of = [&](std::size_t k, Index o, std::vector<Index>& fan) {
-    const Index t = h.target_of[o], q = h.odd_number[o];
-    fan.clear();
-    for(Index i = h.star_offsets[k][q]; i + 2 < h.star_offsets[k][q + 1]; i += 3)
+  // the faces of the fan of every odd vertex o of level k, once per level: those of its star
+  // without its target t, o renamed t (the target alone if none)
+  std::vector<Index> fans, fan_offsets;
+  auto build_fans = [&](std::size_t k) {
+    const Pyramid_level& lev = pyr.levels()[k];
+    fans.clear();
+    fan_offsets.assign(1, 0);
+    for(std::size_t q = 0; q < lev.odd_rows.size(); ++q)
     {
-      const Index* g = h.star[k].data() + i;
-      if(g[0] == t || g[1] == t || g[2] == t) continue;    // removed by the collapse
-      for(int j = 0; j < 3; ++j) fan.push_back(g[j] == o ? t : g[j]);
+      const Index o = lev.vertices[lev.odd_rows[q]], t = h.target_of[o];
+      const std::size_t begin = fans.size();
+      for(Index i = h.star_offsets[k][q]; i + 2 < h.star_offsets[k][q + 1]; i += 3)
+      {
+        const Index* g = h.star[k].data() + i;
+        if(g[0] == t || g[1] == t || g[2] == t) continue;  // removed by the collapse
+        for(int j = 0; j < 3; ++j) fans.push_back(g[j] == o ? t : g[j]);
+      }
+      if(fans.size() == begin) fans.insert(fans.end(), {t, t, t});
+      fan_offsets.push_back(static_cast<Index>(fans.size()));
     }
-    if(fan.empty()) fan.insert(fan.end(), {t, t, t});
   };
   std::vector<Index> face_of(3 * n0, invalid_index);         // the face each input vertex is on
   for(std::size_t i = 0; i < h.finest_faces.size(); ++i)
@@ -229,8 +238,8 @@ void approximation_errors(const Pyramid<TriangleMesh>& pyr, const Adaptive_hiera
   for(std::size_t k = 0; k < K; ++k)
   {
     const Pyramid_level& lev = pyr.levels()[k];
+    build_fans(k);
     parallel_for_blocks(n0, [&](std::size_t first, std::size_t last) {
-      std::vector<Index> fan;
       for(std::size_t p = first; p < last; ++p)
       {
         Index* f = &face_of[3 * p];
@@ -240,17 +249,17 @@ void approximation_errors(const Pyramid<TriangleMesh>& pyr, const Adaptive_hiera
         for(int j = 0; j < 3; ++j)
           if(h.level_of[f[j]] == k) o = f[j];
         if(o == invalid_index) continue;                      // its face stays in M_{k+1}
-        fan_of(k, o, fan);
+        const Index q = h.odd_number[o];
         double best = std::numeric_limits<double>::infinity();
-        std::size_t nearest = 0;
-        for(std::size_t i = 0; i < fan.size(); i += 3)
+        Index nearest = fan_offsets[q];
+        for(Index i = fan_offsets[q]; i < fan_offsets[q + 1]; i += 3)
         {
-          const double d = distance_to(&x[3 * p], &fan[i]);
+          const double d = distance_to(&x[3 * p], &fans[i]);
           if(d < best) { best = d; nearest = i; }
         }
-        std::copy(fan.begin() + nearest, fan.begin() + nearest + 3, f);
+        std::copy(fans.begin() + nearest, fans.begin() + nearest + 3, f);
         moved[p] = best;
-        by[p] = h.odd_number[o];
+        by[p] = q;
       }
     }, 4096);
     const std::size_t n_odd = lev.odd_rows.size();
@@ -267,17 +276,14 @@ void approximation_errors(const Pyramid<TriangleMesh>& pyr, const Adaptive_hiera
         points[by[p]] += 1.;
       }
     parallel_for_blocks(n_odd, [&](std::size_t first, std::size_t last) {   // the fan against the star
-      std::vector<Index> fan;
       for(std::size_t q = first; q < last; ++q)
       {
-        const Index o = lev.vertices[lev.odd_rows[q]];
-        fan_of(k, o, fan);
         double far = 0.;
-        for(std::size_t i = 0; i < fan.size(); i += 3)
+        for(Index i = fan_offsets[q]; i < fan_offsets[q + 1]; i += 3)
         {
           double c[3];
           for(int j = 0; j < 3; ++j)
-            c[j] = (x[3 * std::size_t(fan[i]) + j] + x[3 * std::size_t(fan[i + 1]) + j] + x[3 * std::size_t(fan[i + 2]) + j]) / 3;
+            c[j] = (x[3 * std::size_t(fans[i]) + j] + x[3 * std::size_t(fans[i + 1]) + j] + x[3 * std::size_t(fans[i + 2]) + j]) / 3;
           double near = std::numeric_limits<double>::infinity();
           for(Index r = h.star_offsets[k][q]; r + 2 < h.star_offsets[k][q + 1]; r += 3)
             near = (std::min)(near, distance_to(c, h.star[k].data() + r));
