@@ -3,7 +3,7 @@
 # Installs the Debian 12 packages the package, its tests, examples and docs need (as root),
 # only those that are missing. Extra packages can be given as arguments.
 set -euo pipefail
-packages=(cmake g++ make libcgal-dev libeigen3-dev libboost-dev libtbb-dev catch2 libcgal-demo doxygen xz-utils "$@")
+packages=(cmake g++ make libcgal-dev libeigen3-dev libboost-dev libtbb-dev catch2 libcli11-dev libcgal-demo doxygen xz-utils "$@")
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -36,7 +36,10 @@ void output(const SMR::Pyramid<Mesh>& pyr, const Mesh& input, double edge, const
     for(auto v : vertices(input)) moved += std::sqrt(CGAL::squared_distance(input.point(v), out.point(*it++)));
     moved /= num_vertices(input) * edge;
   }
-  std::printf(" %-28s %9zu %9zu %12.4f\n", name.c_str(), std::size_t(num_vertices(out)), std::size_t(num_faces(out)), moved);
+  if(target == 0)
+    std::printf(" %-28s %9zu %9zu %12.4f\n", name.c_str(), std::size_t(num_vertices(out)), std::size_t(num_faces(out)), moved);
+  else     // other vertices than the input's: no displacement to report
+    std::printf(" %-28s %9zu %9zu %12s\n", name.c_str(), std::size_t(num_vertices(out)), std::size_t(num_faces(out)), "-");
   CGAL::IO::write_polygon_mesh(name + ".ply", out, CGAL::parameters::stream_precision(17));
 }
 

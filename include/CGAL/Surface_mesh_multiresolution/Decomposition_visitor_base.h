@@ -22,8 +22,11 @@ namespace Surface_mesh_multiresolution {
  */
 struct Decomposition_visitor_base
 {
-  /// called before level `k` (from \f$ M_k \f$ to \f$ M_{k+1} \f$) is built; `vertices` is \f$ |M_k| \f$
-  void on_level_started(std::size_t k, std::size_t vertices) { (void)k; (void)vertices; }
+  /// called before level `k` (from \f$ M_k \f$ to \f$ M_{k+1} \f$) is built; `vertices` is \f$ |M_k| \f$.
+  /// Return `false` to cancel: `decompose()` then stops and returns the pyramid of the levels
+  /// built so far (valid and exact, \f$ M_k \f$ its coarsest mesh). A visitor whose
+  /// `on_level_started()` returns `void` never cancels.
+  bool on_level_started(std::size_t k, std::size_t vertices) { (void)k; (void)vertices; return true; }
   /// called when level `k` is built: `removed` vertices were collapsed
   void on_level_finished(std::size_t k, std::size_t removed) { (void)k; (void)removed; }
   /// called once at the end with the number of levels \f$ K \f$

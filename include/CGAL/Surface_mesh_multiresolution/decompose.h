@@ -81,7 +81,14 @@ private:
   bool decompose_level(std::size_t budget)
   {
     const std::size_t k = levels().size();
-    m_visitor.on_level_started(k, rows());
+    // a visitor whose on_level_started() returns a bool cancels with false (void: never)
+    if constexpr(std::is_same<decltype(m_visitor.on_level_started(k, rows())), bool>::value)
+    {
+      if(!m_visitor.on_level_started(k, rows()))
+        return false;
+    }
+    else
+      m_visitor.on_level_started(k, rows());
     connectivity(k);
     select(budget);
     if(m_accepted.empty())

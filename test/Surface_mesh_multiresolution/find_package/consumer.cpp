@@ -27,6 +27,10 @@ int main()
     x += 3;
     if(value[v] != (30 - x) / 3) { std::cerr << "unexpected value " << value[v] << "\n"; return 1; }
   }
+#if defined(SMR_EXPECT_TBB) && !defined(CGAL_LINKED_WITH_TBB)
+  std::cerr << "the installed package target was built with TBB but does not carry it\n";
+  return 1;
+#endif
   std::cout << "installed package OK\n";
   return 0;
 }

@@ -1,0 +1,232 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The command-line tool smr, run as a user runs it, on generated files: channels kept with
+// their names and exact values, triangle strips, polygon soups, pinched surfaces, unreferenced
+// vertices, and bad files refused with a message and a non-zero exit status, no output left.
+#include <catch2/catch.hpp>
+#include "smr_test_utils.h"
+#include "scan_io.h"
+
+#include <CGAL/Polygon_mesh_processing/border.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+
+using smr_tool::Mesh;
+using smr_tool::Point;
+
+namespace {
+
+struct Run { int status; std::string err; };
+
+// runs `smr ARGS` in the working directory, stderr captured
+Run smr(const std::string& args)
+{
+  const std::string cmd = std::string(SMR_TOOL) + " " + args + " 2> smr_stderr.txt > smr_stdout.txt";
+  const int raw = std::system(cmd.c_str());
+  std::ifstream is("smr_stderr.txt");
+  std::stringstream ss;
+  ss << is.rdbuf();
+  return Run{WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, ss.str()};
+}
+
+bool exists(const std::string& file) { return std::ifstream(file).good(); }
+
+void write_text(const std::string& file, const std::string& text)
+{
+  std::ofstream os(file, std::ios::binary);
+  os << text;
+}
+
+// a coloured sphere written as binary PLY (colours uchar, a float 'quality' scalar)
+void write_coloured_sphere(const std::string& file, int subdivisions)
+{
+  smr_tool::Scan s;
+  s.mesh = smr_test::icosphere<Mesh>(subdivisions);
+  s.channels = {smr_tool::Channel{"color", {"red", "green", "blue"}, {"uchar", "uchar", "uchar"}},
+                smr_tool::Channel{"scalar", {"quality"}, {"float"}}};
+  s.maps = smr_tool::add_channel_maps(s.mesh, 2);
+  for(auto v : vertices(s.mesh))
+  {
+    const Point& p = s.mesh.point(v);
+    s.maps[0][v] = {{std::round(127.5 + 127.5 * p.x()), std::round(127.5 + 127.5 * p.y()), double((v.idx() * 37) % 256), 0.}};
+    s.maps[1][v] = {{double(float(p.z() * 0.25)), 0., 0., 0.}};
+  }
+  std::string dropped;
+  smr_tool::write_scan(file, s.mesh, s.channels, s.maps, true, dropped);
+}
+
+} // namespace
+
+TEST_CASE("decompose then reconstruct gives the PLY back byte for byte, channels included", "[tool]")
+{
+  write_coloured_sphere("sphere.ply", 3);
+  REQUIRE(smr("decompose sphere.ply -o sphere.smrp").status == 0);
+  REQUIRE(smr("reconstruct sphere.smrp -o sphere0.ply").status == 0);
+  std::ifstream a("sphere.ply", std::ios::binary), b("sphere0.ply", std::ios::binary);
+  const std::string sa((std::istreambuf_iterator<char>(a)), {}), sb((std::istreambuf_iterator<char>(b)), {});
+  CHECK(sa == sb);
+  REQUIRE(smr("info sphere.smrp").status == 0);
+  std::ifstream info("smr_stdout.txt");
+  const std::string text((std::istreambuf_iterator<char>(info)), {});
+  CHECK(text.find("color (red green blue)") != std::string::npos);
+  CHECK(text.find("scalar (quality)") != std::string::npos);
+}
+
+TEST_CASE("a level of detail keeps input vertices with their exact colours and scalars", "[tool]")
+{
+  write_coloured_sphere("sphere.ply", 4);
+  const smr_tool::Scan in = smr_tool::read_scan("sphere.ply");
+  for(const char* guide : {"", "--guide color"})
+  {
+    REQUIRE(smr(std::string("lod sphere.ply -o lod.ply --ratio 0.1 ") + guide).status == 0);
+    const smr_tool::Scan out = smr_tool::read_scan("lod.ply");
+    REQUIRE(out.channels.size() == 2);
+    CHECK(out.channels[0].names == std::vector<std::string>{"red", "green", "blue"});
+    CHECK(out.channels[0].types == std::vector<std::string>{"uchar", "uchar", "uchar"});
+    CHECK(num_vertices(out.mesh) == std::size_t(std::lround(0.1 * double(num_vertices(in.mesh)))));
+    std::map<Point, Mesh::Vertex_index> by_position;
+    for(auto v : vertices(in.mesh)) by_position[in.mesh.point(v)] = v;
+    std::size_t matched = 0;
+    for(auto v : vertices(out.mesh))
+    {
+      const auto it = by_position.find(out.mesh.point(v));
+      REQUIRE(it != by_position.end());                  // an input vertex, at its exact position
+      CHECK(out.maps[0][v] == in.maps[0][it->second]);   // its colour
+      CHECK(out.maps[1][v] == in.maps[1][it->second]);   // its scalar
+      ++matched;
+    }
+    CHECK(matched == num_vertices(out.mesh));
+    CHECK(CGAL::is_closed(out.mesh));
+  }
+}
+
+TEST_CASE("triangle strips are expanded with a consistent orientation", "[tool]")
+{
+  // a 4 x 3 grid of vertices as two strips (rows), the second restarted with -1 in one list
+  std::string ply = "ply\nformat ascii 1.0\nelement vertex 12\nproperty float x\nproperty float y\nproperty float z\n"
+                    "element tristrips 1\nproperty list int int vertex_indices\nend_header\n";
+  for(int j = 0; j < 3; ++j)
+    for(int i = 0; i < 4; ++i) ply += std::to_string(i) + " " + std::to_string(j) + " 0\n";
+  ply += "17 4 0 5 1 6 2 7 3 -1 8 4 9 5 10 6 11 7\n";
+  write_text("strips.ply", ply);
+  const Run r = smr("relax strips.ply -o strips_out.ply --iterations 0");
+  REQUIRE(r.status == 0);
+  CHECK(r.err.find("triangle strips expanded: 12 triangles") != std::string::npos);
+  const smr_tool::Scan out = smr_tool::read_scan("strips_out.ply");
+  CHECK(num_faces(out.mesh) == 12);
+  CHECK(num_vertices(out.mesh) == 12);
+  std::vector<Mesh::Halfedge_index> borders;
+  CGAL::Polygon_mesh_processing::extract_boundary_cycles(out.mesh, std::back_inserter(borders));
+  CHECK(borders.size() == 1);                            // one sheet, no flipped face cut it apart
+  for(auto f : faces(out.mesh))                          // every face keeps the strip's orientation (+z)
+  {
+    const auto h = halfedge(f, out.mesh);
+    const Point &a = out.mesh.point(source(h, out.mesh)), &b = out.mesh.point(target(h, out.mesh)),
+                &c = out.mesh.point(target(next(h, out.mesh), out.mesh));
+    CHECK(CGAL::cross_product(b - a, c - a).z() > 0);
+  }
+}
+
+TEST_CASE("a polygon soup (STL) is welded, a pinched surface is split, unreferenced vertices go: all said", "[tool]")
+{
+  // an octahedron as an STL soup: 8 triangles, 24 corners, 6 distinct positions
+  const Point p[6] = {Point(1, 0, 0), Point(-1, 0, 0), Point(0, 1, 0), Point(0, -1, 0), Point(0, 0, 1), Point(0, 0, -1)};
+  const int t[8][3] = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4}, {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
+  std::ostringstream stl;
+  stl << "solid octahedron\n";
+  for(const auto& f : t)
+  {
+    stl << "facet normal 0 0 0\nouter loop\n";
+    for(int j = 0; j < 3; ++j) stl << "vertex " << p[f[j]].x() << " " << p[f[j]].y() << " " << p[f[j]].z() << "\n";
+    stl << "endloop\nendfacet\n";
+  }
+  stl << "endsolid octahedron\n";
+  write_text("soup.stl", stl.str());
+  Run r = smr("relax soup.stl -o soup_out.off --iterations 0");
+  REQUIRE(r.status == 0);
+  Mesh m;
+  REQUIRE(CGAL::IO::read_polygon_mesh("soup_out.off", m));
+  CHECK(num_vertices(m) == 6);
+  CHECK(num_faces(m) == 8);
+  CHECK(CGAL::is_closed(m));
+  // two triangles that share one vertex only (a bow tie), plus two vertices no face uses
+  write_text("bowtie.ply", "ply\nformat ascii 1.0\nelement vertex 7\nproperty float x\nproperty float y\nproperty float z\n"
+                           "element face 2\nproperty list uchar int vertex_indices\nend_header\n"
+                           "0 0 0\n1 0 0\n0 1 0\n-1 0 0\n0 -1 0\n5 5 5\n6 6 6\n3 0 1 2\n3 0 3 4\n");
+  r = smr("relax bowtie.ply -o bowtie_out.ply --iterations 0");
+  REQUIRE(r.status == 0);
+  CHECK(r.err.find("2 unreferenced vertices removed") != std::string::npos);
+  CHECK(r.err.find("1 vertex duplicated") != std::string::npos);
+  const smr_tool::Scan out = smr_tool::read_scan("bowtie_out.ply");
+  CHECK(num_vertices(out.mesh) == 6);
+  CHECK(num_faces(out.mesh) == 2);
+  CHECK(CGAL::is_valid_polygon_mesh(out.mesh));
+}
+
+TEST_CASE("bad files and arguments: a message, a non-zero status, no output file", "[tool][input]")
+{
+  const std::string header = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+                             "element face 1\nproperty list uchar int vertex_indices\nend_header\n";
+  write_text("bad_index.ply", header + "0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n");
+  write_text("truncated.ply", header + "0 0 0\n1 0 0\n");
+  write_text("no_faces.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+                             "end_header\n0 0 0\n1 0 0\n0 1 0\n");
+  write_text("junk.ply", "this is not a mesh\n\x01\x02\x03");
+  write_text("quad.off", "OFF\n4 1 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3\n");
+  {
+    // a binary PLY with an infinite coordinate
+    std::string bin = "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+                      "element face 1\nproperty list uchar int vertex_indices\nend_header\n";
+    const float xyz[9] = {0, 0, 0, 1, 0, std::numeric_limits<float>::infinity(), 0, 1, 0};
+    bin.append(reinterpret_cast<const char*>(xyz), sizeof xyz);
+    bin.push_back(char(3));
+    const std::int32_t f[3] = {0, 1, 2};
+    bin.append(reinterpret_cast<const char*>(f), sizeof f);
+    write_text("infinite.ply", bin);
+  }
+  write_coloured_sphere("sphere.ply", 2);
+  REQUIRE(smr("decompose sphere.ply -o good.smrp").status == 0);
+  {
+    std::ifstream is("good.smrp", std::ios::binary);
+    const std::string bytes((std::istreambuf_iterator<char>(is)), {});
+    write_text("cut.smrp", bytes.substr(0, bytes.size() / 2));
+  }
+  const std::vector<std::pair<std::string, std::string> > cases = {
+    {"lod bad_index.ply -o out.ply --ratio 0.5", "refers to vertex 7"},
+    {"lod truncated.ply -o out.ply --ratio 0.5", "truncated"},
+    {"decompose no_faces.ply -o out.smrp", "no faces"},
+    {"denoise junk.ply -o out.ply", "not a PLY file"},
+    {"relax infinite.ply -o out.ply", "non-finite"},
+    {"reconstruct cut.smrp -o out.ply", "cut.smrp"},
+    {"reconstruct good.smrp -o out.ply --level 99", "does not exist"},
+    {"filter good.smrp -o out.ply --stop-band 1 99", "not a range"},
+    {"lod good.smrp -o out.ply --guide texture --ratio 0.5", "no such channel"},
+    {"relax missing.ply -o out.ply", "cannot open"},
+    {"relax sphere.ply -o out.xyz", "unknown output format"},
+    {"decompose sphere.ply -o out.ply", "pyramid format"},
+  };
+  for(const auto& c : cases)
+  {
+    INFO(c.first);
+    std::remove("out.ply");
+    std::remove("out.smrp");
+    const Run r = smr(c.first);
+    CHECK(r.status == 1);
+    CHECK(r.err.find(c.second) != std::string::npos);
+    CHECK(!exists("out.ply"));
+    CHECK(!exists("out.smrp"));
+    CHECK(!exists("out.ply.partial.ply"));
+  }
+  // the quad is triangulated (said), not refused
+  const Run q = smr("relax quad.off -o quad_out.off --iterations 0");
+  CHECK(q.status == 0);
+  CHECK(q.err.find("1 polygon with more than 3 corners triangulated") != std::string::npos);
+  // arguments CLI11 refuses: its message and status
+  CHECK(smr("lod sphere.ply -o out.ply --ratio 2").status != 0);
+  CHECK(smr("filter sphere.ply -o out.ply --low-pass 1 --stop-band 1 2").status != 0);
+  CHECK(smr("").status != 0);
+}
