@@ -69,6 +69,9 @@ TEST_CASE("decompose then reconstruct gives the PLY back byte for byte, channels
   std::ifstream a("sphere.ply", std::ios::binary), b("sphere0.ply", std::ios::binary);
   const std::string sa((std::istreambuf_iterator<char>(a)), {}), sb((std::istreambuf_iterator<char>(b)), {});
   CHECK(sa == sb);
+  const Run quiet = smr("reconstruct sphere.smrp -o sphere1.ply --level 1 --quiet");   // --quiet after the subcommand too
+  REQUIRE(quiet.status == 0);
+  CHECK(quiet.err.empty());
   REQUIRE(smr("info sphere.smrp").status == 0);
   std::ifstream info("smr_stdout.txt");
   const std::string text((std::istreambuf_iterator<char>(info)), {});

@@ -452,6 +452,7 @@ int main(int argc, char** argv)
                "Meshes: PLY (every per-vertex property kept as a channel), OFF, OBJ, STL (geometry). Pyramids: .smrp files."};
   app.require_subcommand(1);
   app.add_flag("-q,--quiet", quiet, "no progress or notes on stderr");
+  app.fallthrough();      // --quiet before or after the subcommand
   const std::vector<std::string> schemes = {"curvature", "sod", "uniform"};
   std::string in, out, scheme = "curvature", guide;
   std::size_t min_vertices = 4, level = 0;
