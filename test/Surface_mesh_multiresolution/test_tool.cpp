@@ -12,8 +12,10 @@
 #include <cstdlib>
 #include <fstream>
 #include <map>
+#include <random>
 #include <sstream>
 #include <string>
+#include <sys/wait.h>
 
 using smr_tool::Mesh;
 using smr_tool::Point;
@@ -232,4 +234,55 @@ TEST_CASE("bad files and arguments: a message, a non-zero status, no output file
   CHECK(smr("lod sphere.ply -o out.ply --ratio 2").status != 0);
   CHECK(smr("filter sphere.ply -o out.ply --low-pass 1 --stop-band 1 2").status != 0);
   CHECK(smr("").status != 0);
+}
+
+TEST_CASE("seeded fuzzing of the PLY reader: every mutated file is read into a valid mesh or refused with a message", "[tool][input][fuzz]")
+{
+  // binary and ASCII, faces and strips; bytes flipped, truncated, header words changed
+  write_coloured_sphere("fuzz_base.ply", 1);
+  std::ifstream is("fuzz_base.ply", std::ios::binary);
+  const std::string binary((std::istreambuf_iterator<char>(is)), {});
+  std::string ascii = "ply\nformat ascii 1.0\nelement vertex 6\nproperty float x\nproperty float y\nproperty float z\n"
+                      "property uchar red\nproperty uchar green\nproperty uchar blue\n"
+                      "element tristrips 1\nproperty list int int vertex_indices\nend_header\n";
+  for(int i = 0; i < 6; ++i) ascii += std::to_string(i % 3) + " " + std::to_string(i / 3) + " 0 " + std::to_string(40 * i) + " 7 9\n";
+  ascii += "7 0 3 1 4 2 5 -1\n";
+  std::mt19937 random(20261201);
+  std::size_t refused = 0, read = 0;
+  for(int trial = 0; trial < 600; ++trial)
+  {
+    std::string bytes = trial % 2 ? binary : ascii;
+    const int edits = 1 + int(random() % 4);
+    for(int e = 0; e < edits; ++e)
+    {
+      const std::size_t at = random() % bytes.size();
+      switch(random() % 4)
+      {
+        case 0: bytes[at] = char(random() % 256); break;                       // a byte flipped
+        case 1: bytes.resize(at); break;                                        // truncated
+        case 2: bytes[at] = "0123456789-. \n"[random() % 14]; break;            // a plausible character
+        default: bytes.insert(at, std::string(1 + random() % 8, char(0xff)));  // bytes inserted
+      }
+      if(bytes.empty()) bytes = "p";
+    }
+    write_text("fuzz.ply", bytes);
+    try
+    {
+      const smr_tool::Scan s = smr_tool::read_scan("fuzz.ply");
+      ++read;
+      REQUIRE(CGAL::is_valid_polygon_mesh(s.mesh));
+      REQUIRE(CGAL::is_triangle_mesh(s.mesh));
+      REQUIRE(s.maps.size() == s.channels.size());
+      for(auto v : vertices(s.mesh))
+        for(int d = 0; d < 3; ++d) REQUIRE(std::isfinite(s.mesh.point(v)[d]));
+    }
+    catch(const std::runtime_error& e)
+    {
+      ++refused;
+      REQUIRE(std::string(e.what()).size() > 10);
+    }
+  }
+  INFO(read << " read, " << refused << " refused");
+  CHECK(read > 0);
+  CHECK(refused > 0);
 }

@@ -26,11 +26,14 @@
 
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <fstream>
+#include <functional>
 #include <map>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -87,30 +90,72 @@ inline std::string extension_of(const std::string& file)
 namespace ply {
 using CGAL::IO::internal::PLY_read_number;
 using CGAL::IO::internal::PLY_read_typed_number;
-using CGAL::IO::internal::PLY_read_typed_list;
+using CGAL::IO::internal::PLY_read_typed_list_with_typed_size;
 
-// the value of a scalar property as a double, and its PLY type name
-inline bool number(const PLY_read_number* p, double& v, std::string& type)
+// How one property of an element is read, resolved once per element (CGAL's header parser
+// makes the typed property objects; their read<T>() decodes ASCII, little- and big-endian).
+// Why not their get(): a list's get() resizes its buffer to the count it reads, so a crafted
+// count (2^31 in a 100-byte file) would allocate gigabytes before the read fails; here a list
+// grows entry by entry and stops at the end of the data. Dynamic casts per item also cost.
+struct Property_reader
 {
-#define SMR_TOOL_TRY_NUMBER(T, NAME)                                                       \
-  if(auto q = dynamic_cast<const PLY_read_typed_number<T>*>(p)) { v = double(q->buffer()); type = NAME; return true; }
-  SMR_TOOL_TRY_NUMBER(std::int8_t, "char") SMR_TOOL_TRY_NUMBER(std::uint8_t, "uchar")
-  SMR_TOOL_TRY_NUMBER(std::int16_t, "short") SMR_TOOL_TRY_NUMBER(std::uint16_t, "ushort")
-  SMR_TOOL_TRY_NUMBER(std::int32_t, "int") SMR_TOOL_TRY_NUMBER(std::uint32_t, "uint")
-  SMR_TOOL_TRY_NUMBER(float, "float") SMR_TOOL_TRY_NUMBER(double, "double")
-#undef SMR_TOOL_TRY_NUMBER
-  return false;
+  bool is_list = false;
+  std::string type;                                               // the PLY type of a scalar
+  std::function<double(std::istream&)> number;
+  std::function<void(std::istream&, std::vector<long long>&)> list;   // throws past the data
+};
+
+template <typename T>
+bool scalar_as(const PLY_read_number* p, const char* name, Property_reader& r)
+{
+  auto q = dynamic_cast<const PLY_read_typed_number<T>*>(p);
+  if(!q) return false;
+  r.type = name;
+  r.number = [q](std::istream& is) { return double(q->template read<T>(is)); };
+  return true;
 }
 
-// the entries of an integer list property
-inline bool list(const PLY_read_number* p, std::vector<long long>& v)
+template <typename S, typename I>
+bool list_as(const PLY_read_number* p, Property_reader& r)
 {
-#define SMR_TOOL_TRY_LIST(T)                                                               \
-  if(auto q = dynamic_cast<const PLY_read_typed_list<T>*>(p)) { v.assign(q->buffer().begin(), q->buffer().end()); return true; }
-  SMR_TOOL_TRY_LIST(std::int8_t) SMR_TOOL_TRY_LIST(std::uint8_t) SMR_TOOL_TRY_LIST(std::int16_t)
-  SMR_TOOL_TRY_LIST(std::uint16_t) SMR_TOOL_TRY_LIST(std::int32_t) SMR_TOOL_TRY_LIST(std::uint32_t)
-#undef SMR_TOOL_TRY_LIST
-  return false;
+  auto q = dynamic_cast<const PLY_read_typed_list_with_typed_size<S, I>*>(p);
+  if(!q) return false;
+  r.is_list = true;
+  r.list = [q](std::istream& is, std::vector<long long>& v) {
+    const double count = double(q->template read<S>(is));
+    v.clear();
+    if(!is || !(count >= 0))
+      throw std::runtime_error("a list with an unreadable or negative count");
+    for(double i = 0; i < count; ++i)
+    {
+      const double x = double(q->template read<I>(is));
+      if(!is) throw std::runtime_error("a list of " + std::to_string(static_cast<long long>(count)) + " entries, more than the file holds");
+      if(!(x == std::floor(x) && std::abs(x) < 4.5e15)) throw std::runtime_error("a list with a non-integer entry");
+      v.push_back(static_cast<long long>(x));
+    }
+  };
+  return true;
+}
+
+template <typename S>
+bool list_with_size(const PLY_read_number* p, Property_reader& r)
+{
+  return list_as<S, std::int8_t>(p, r) || list_as<S, std::uint8_t>(p, r) || list_as<S, std::int16_t>(p, r)
+         || list_as<S, std::uint16_t>(p, r) || list_as<S, std::int32_t>(p, r) || list_as<S, std::uint32_t>(p, r)
+         || list_as<S, float>(p, r) || list_as<S, double>(p, r);
+}
+
+inline Property_reader reader_of(const PLY_read_number* p)
+{
+  Property_reader r;
+  if(scalar_as<std::int8_t>(p, "char", r) || scalar_as<std::uint8_t>(p, "uchar", r) || scalar_as<std::int16_t>(p, "short", r)
+     || scalar_as<std::uint16_t>(p, "ushort", r) || scalar_as<std::int32_t>(p, "int", r) || scalar_as<std::uint32_t>(p, "uint", r)
+     || scalar_as<float>(p, "float", r) || scalar_as<double>(p, "double", r))
+    return r;
+  if(list_with_size<std::uint8_t>(p, r) || list_with_size<std::int8_t>(p, r) || list_with_size<std::uint16_t>(p, r)
+     || list_with_size<std::int16_t>(p, r) || list_with_size<std::uint32_t>(p, r) || list_with_size<std::int32_t>(p, r))
+    return r;
+  throw std::runtime_error("property '" + p->name() + "' has a type the reader does not know");
 }
 } // namespace ply
 
@@ -137,11 +182,50 @@ inline std::string kind_of_property(const std::string& name)
   return "scalar";
 }
 
+// Checks the header's structure before CGAL's parser sees it. Why: CGAL 5.5's
+// PLY_reader::init() appends every property line to the last element read, and crashes on a
+// property line before any element line (found by the fuzz test).
+inline void check_ply_header(std::istream& is, const std::string& file)
+{
+  std::string line;
+  bool element = false;
+  std::size_t bytes = 0, number = 0;
+  while(std::getline(is, line))
+  {
+    bytes += line.size() + 1;
+    if(++number == 1 && line.compare(0, 3, "ply") != 0)
+      throw std::runtime_error(file + ": not a PLY file (bad header)");
+    if(bytes > (1 << 20))
+      throw std::runtime_error(file + ": not a PLY file (no end of header in the first MiB)");
+    std::istringstream words(line);
+    std::string keyword;
+    words >> keyword;
+    if(keyword == "element")
+    {
+      std::string name;
+      long long count = -1;
+      if(!(words >> name >> count) || count < 0)
+        throw std::runtime_error(file + ": bad header line " + std::to_string(number) + ": '" + line + "'");
+      element = true;
+    }
+    else if(keyword == "property" && !element)
+      throw std::runtime_error(file + ": bad header: line " + std::to_string(number) + " has a property before any element");
+    else if(keyword == "end_header")
+    {
+      is.clear();
+      is.seekg(0);
+      return;
+    }
+  }
+  throw std::runtime_error(file + ": not a PLY file (no end of header)");
+}
+
 inline void read_ply(const std::string& file, Soup& soup)
 {
   std::ifstream is(file, std::ios::binary);
   if(!is)
     throw std::runtime_error("cannot open " + file);
+  check_ply_header(is, file);
   CGAL::IO::internal::PLY_reader reader(false);
   if(!reader.init(is))
     throw std::runtime_error(file + ": not a PLY file (bad header)");
@@ -158,18 +242,24 @@ inline void read_ply(const std::string& file, Soup& soup)
     int xyz[3] = {-1, -1, -1};
     std::vector<int> channel_of(element.number_of_properties(), -1), component_of(element.number_of_properties(), -1);
     int indices = -1;
+    std::vector<ply::Property_reader> readers;
+    for(std::size_t k = 0; k < element.number_of_properties(); ++k)
+    {
+      try { readers.push_back(ply::reader_of(element.property(k))); }
+      catch(const std::runtime_error& e) { throw std::runtime_error(file + ": element '" + name + "': " + e.what()); }
+    }
     for(std::size_t k = 0; k < element.number_of_properties(); ++k)
     {
       const std::string& pn = element.property(k)->name();
       if(is_vertex)
       {
-        double unused; std::string type;
+        const std::string type = readers[k].type;
         if(pn == "x" || pn == "y" || pn == "z")
         {
           xyz[pn[0] - 'x'] = int(k);
           continue;
         }
-        if(!ply::number(element.property(k), unused, type))
+        if(readers[k].is_list)
         {
           soup.notes.push_back("vertex property '" + pn + "' is a list: not read");
           continue;
@@ -195,46 +285,51 @@ inline void read_ply(const std::string& file, Soup& soup)
         soup.channels[c].names.push_back(pn);
         soup.channels[c].types.push_back(type);
       }
-      else if((is_face || is_strip) && (pn == "vertex_indices" || pn == "vertex_index"))
+      else if((is_face || is_strip) && (pn == "vertex_indices" || pn == "vertex_index") && readers[k].is_list)
         indices = int(k);
     }
     if(is_vertex)
     {
       if(have_vertices)
         throw std::runtime_error(file + ": more than one vertex element");
-      if(xyz[0] < 0 || xyz[1] < 0 || xyz[2] < 0)
-        throw std::runtime_error(file + ": the vertex element has no x, y, z");
-      double unused; std::string type;
-      ply::number(element.property(std::size_t(xyz[0])), unused, type);
-      soup.double_positions = type == "double";
+      if(xyz[0] < 0 || xyz[1] < 0 || xyz[2] < 0 || readers[std::size_t(xyz[0])].is_list || readers[std::size_t(xyz[1])].is_list
+         || readers[std::size_t(xyz[2])].is_list)
+        throw std::runtime_error(file + ": the vertex element has no x, y, z numbers");
+      soup.double_positions = readers[std::size_t(xyz[0])].type == "double";
       have_vertices = true;
     }
     if((is_face || is_strip) && indices < 0)
       throw std::runtime_error(file + ": element '" + name + "' has no vertex_indices list");
-    std::vector<long long> list;
+    std::vector<long long> list, unused_list;
+    std::vector<double> value(element.number_of_properties(), 0.);
     for(std::size_t j = 0; j < element.number_of_items(); ++j)
     {
       for(std::size_t k = 0; k < element.number_of_properties(); ++k)
       {
-        element.property(k)->get(is);
+        try
+        {
+          if(readers[k].is_list)
+            readers[k].list(is, int(k) == indices ? list : unused_list);
+          else
+            value[k] = readers[k].number(is);
+        }
+        catch(const std::runtime_error& e)
+        {
+          throw std::runtime_error(file + ": item " + std::to_string(j) + " of element '" + name + "': " + e.what());
+        }
         if(is.fail())
           throw std::runtime_error(file + ": truncated or unreadable at item " + std::to_string(j) + " of element '" + name + "'");
       }
       if(is_vertex)
       {
-        double p[3]; std::string type;
-        for(int d = 0; d < 3; ++d)
-          ply::number(element.property(std::size_t(xyz[d])), p[d], type);
-        soup.points.emplace_back(p[0], p[1], p[2]);
+        soup.points.emplace_back(value[std::size_t(xyz[0])], value[std::size_t(xyz[1])], value[std::size_t(xyz[2])]);
         for(auto& v : soup.values) v.push_back(Value4{{0., 0., 0., 0.}});
         for(std::size_t k = 0; k < element.number_of_properties(); ++k)
           if(channel_of[k] >= 0)
-            ply::number(element.property(k), soup.values[std::size_t(channel_of[k])].back()[std::size_t(component_of[k])], type);
+            soup.values[std::size_t(channel_of[k])].back()[std::size_t(component_of[k])] = value[k];
       }
       else if(is_face || is_strip)
       {
-        if(!ply::list(element.property(std::size_t(indices)), list))
-          throw std::runtime_error(file + ": the vertex indices of element '" + name + "' are not integers");
         if(is_face)
           soup.polygons.emplace_back(list.begin(), list.end());
         else
@@ -307,8 +402,10 @@ inline void repair(Soup& s)
   // 2. polygons: merged indices, consecutive repeats out; fewer than 3 corners, a corner twice
   //    or the same corners as an earlier polygon: taken out
   std::size_t degenerate = 0, duplicates = 0;
-  std::map<std::vector<std::size_t>, std::size_t> seen;
-  std::vector<std::vector<std::size_t> > kept;
+  std::vector<std::vector<std::size_t> > cleaned;
+  std::vector<std::pair<std::array<std::size_t, 3>, std::size_t> > triangles;   // sorted corners, position in `cleaned`
+  std::map<std::vector<std::size_t>, std::size_t> larger;                        // the rare polygons: sorted corners
+  std::vector<char> duplicate;
   for(auto& p : s.polygons)
   {
     std::vector<std::size_t> q;
@@ -318,8 +415,21 @@ inline void repair(Soup& s)
     std::vector<std::size_t> sorted = q;
     std::sort(sorted.begin(), sorted.end());
     if(q.size() < 3 || std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end()) { ++degenerate; continue; }
-    if(!seen.emplace(sorted, kept.size()).second) { ++duplicates; continue; }
-    kept.push_back(std::move(q));
+    duplicate.push_back(0);
+    if(q.size() == 3)
+      triangles.push_back({{{sorted[0], sorted[1], sorted[2]}}, cleaned.size()});
+    else if(!larger.emplace(sorted, cleaned.size()).second)
+      duplicate.back() = 1;
+    cleaned.push_back(std::move(q));
+  }
+  std::sort(triangles.begin(), triangles.end());   // equal corners together, the first one first
+  for(std::size_t i = 1; i < triangles.size(); ++i)
+    if(triangles[i].first == triangles[i - 1].first) duplicate[triangles[i].second] = 1;
+  std::vector<std::vector<std::size_t> > kept;
+  for(std::size_t i = 0; i < cleaned.size(); ++i)
+  {
+    if(duplicate[i]) { ++duplicates; continue; }
+    kept.push_back(std::move(cleaned[i]));
   }
   s.polygons.swap(kept);
   // 3. unreferenced points out

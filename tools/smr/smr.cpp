@@ -20,6 +20,7 @@
 #include <CLI/CLI.hpp>
 
 #include <atomic>
+#include <iomanip>
 #include <chrono>
 #include <csignal>
 #include <cstring>
