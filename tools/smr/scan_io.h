@@ -470,7 +470,9 @@ inline void repair(Soup& s)
   Follow_duplicates follow;
   follow.s = &s;
   follow.counts = counts;
-  CGAL::Polygon_mesh_processing::orient_polygon_soup(s.points, s.polygons, CGAL::parameters::visitor(follow));
+  // a soup that already is an oriented manifold needs no orientation pass (the costly part)
+  if(!CGAL::Polygon_mesh_processing::is_polygon_soup_a_polygon_mesh(s.polygons))
+    CGAL::Polygon_mesh_processing::orient_polygon_soup(s.points, s.polygons, CGAL::parameters::visitor(follow));
   if(counts[1]) s.notes.push_back(plural(counts[1], "non-manifold edge") + " cut apart");
   if(counts[0]) s.notes.push_back(plural(counts[0], "vertex") + " duplicated where the surface is pinched (non-manifold)");
   if(counts[2]) s.notes.push_back(plural(counts[2], "face") + " reversed to orient the surface consistently");
