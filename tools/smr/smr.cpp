@@ -199,16 +199,24 @@ Pyramid_file read_pyramid_file(const std::string& file)
 
 // ---- inputs -------------------------------------------------------------------------------
 
+// "color (red green blue), normal (nx ny nz)", with each component's PLY type if asked
+std::string describe(const std::vector<Channel>& channels, bool with_types)
+{
+  std::string text;
+  for(const Channel& c : channels)
+  {
+    text += (text.empty() ? "" : ", ") + c.kind + " (";
+    for(std::size_t j = 0; j < c.names.size(); ++j)
+      text += (j ? " " : "") + c.names[j] + (with_types ? ":" + c.types[j] : std::string());
+    text += ")";
+  }
+  return text;
+}
+
 Scan read_mesh(const std::string& file)
 {
   Scan scan = read_scan(file);
-  std::string channels;
-  for(const Channel& c : scan.channels)
-  {
-    channels += (channels.empty() ? "" : ", ") + c.kind + " (";
-    for(std::size_t j = 0; j < c.names.size(); ++j) channels += (j ? " " : "") + c.names[j];
-    channels += ")";
-  }
+  const std::string channels = describe(scan.channels, false);
   say(file + ": " + plural(num_vertices(scan.mesh), "vertex") + ", " + plural(num_faces(scan.mesh), "face")
       + (channels.empty() ? "" : "; channels: " + channels));
   for(const std::string& n : scan.notes) say("  repaired: " + n);
@@ -262,7 +270,7 @@ void write_mesh(const std::string& out, const Mesh& mesh, const std::vector<Chan
   say("wrote " + out + ": " + plural(num_vertices(mesh), "vertex") + ", " + plural(num_faces(mesh), "face"));
 }
 
-// reconstructs level k (or the adaptive mesh of `adaptive`) with the channels and writes it
+// reconstructs level k with the channels and writes it
 void write_level(const Pyramid_file& p, const std::string& out, std::size_t level)
 {
   Mesh mesh;
@@ -286,13 +294,7 @@ int info(const std::string& in)
     std::cout << "  relaxation scheme: "
               << (p.pyr.relaxation_scheme() == SMR::Relaxation_scheme::CURVATURE ? "curvature"
                   : p.pyr.relaxation_scheme() == SMR::Relaxation_scheme::SECOND_ORDER_DIFFERENCE ? "sod" : "uniform") << "\n";
-    std::cout << "  channels: geometry (x y z)";
-    for(const Channel& c : p.channels)
-    {
-      std::cout << ", " << c.kind << " (";
-      for(std::size_t j = 0; j < c.names.size(); ++j) std::cout << (j ? " " : "") << c.names[j];
-      std::cout << ")";
-    }
+    std::cout << "  channels: geometry (x y z)" << (p.channels.empty() ? "" : ", ") << describe(p.channels, false);
     std::cout << "\n  level  vertices  faces\n";
     for(std::size_t k = 0; k <= K; ++k)
       std::cout << "  " << std::setw(5) << k << "  " << std::setw(8) << p.pyr.number_of_vertices(k) << "  " << std::setw(5)
@@ -311,14 +313,8 @@ int info(const std::string& in)
   std::cout << in << ": triangle mesh, " << plural(num_vertices(m), "vertex") << ", " << plural(num_faces(m), "face") << ", "
             << plural(num_edges(m), "edge") << "\n";
   std::cout << "  border loops: " << borders.size() << ", connected components: " << components << "\n";
-  std::cout << "  positions: " << (scan.double_positions ? "double" : "float") << "\n  channels: geometry (x y z)";
-  for(const Channel& c : scan.channels)
-  {
-    std::cout << ", " << c.kind << " (";
-    for(std::size_t j = 0; j < c.names.size(); ++j) std::cout << (j ? " " : "") << c.names[j] << ":" << c.types[j];
-    std::cout << ")";
-  }
-  std::cout << "\n";
+  std::cout << "  positions: " << (scan.double_positions ? "double" : "float") << "\n  channels: geometry (x y z)"
+            << (scan.channels.empty() ? "" : ", ") << describe(scan.channels, true) << "\n";
   for(const std::string& n : scan.notes) std::cout << "  repaired on reading: " << n << "\n";
   return 0;
 }

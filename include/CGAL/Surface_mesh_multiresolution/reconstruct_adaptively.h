@@ -190,8 +190,9 @@ inline double squared_distance_to_triangle(const double* p, const double* a, con
 // 3-8 % lower RMS errors than `largest` alone, with about equal Hausdorff errors; the term of
 // the largest distance cuts the Hausdorff errors by up to 69 % (horse at 5 %: 4.71 -> 1.45),
 // the RMS errors change by -2 to +7 %. Weights 16 and 256 tried: 16 leaves three Hausdorff
-// errors above meshopt's of 18 rows, 256 costs Laurana's 1 % mesh 10 % more RMS error. The faces of M_k hold at most one odd vertex each (the odd vertices are
-// independent), so the input vertices are measured in parallel, each about 0.6 times per level.
+// errors above meshopt's of 18 rows, 256 costs Laurana's 1 % mesh 10 % more RMS error. The
+// faces of M_k hold at most one odd vertex each (the odd vertices are independent), so the
+// input vertices are measured in parallel, each about 0.6 times per level.
 template <typename TriangleMesh>
 void approximation_errors(const Pyramid<TriangleMesh>& pyr, const Adaptive_hierarchy& h,
                           std::vector<std::vector<double> >& largest, std::vector<std::vector<double> >& summed)
