@@ -164,13 +164,95 @@ TEST_CASE("every pyramid decompose() makes holds the invariants, also after filt
     CHECK(SMR::internal::check_pyramid(SMR::decompose(elephant)) == "");
 }
 
+// The pyramid with its weights stored in the levels and no weight positions, as read from
+// a file of format 1 or 2: written in format 2, which serialises the records as they are
+SMR::Pyramid<Mesh> with_stored_weights(const SMR::Pyramid<Mesh>& pyr)
+{
+  SMR::Pyramid<Mesh> stored = pyr;
+  SMR::internal::Level_weights weights(pyr);
+  std::vector<Index> F = pyr.coarse_faces();
+  for(std::size_t k = pyr.number_of_levels(); k-- > 0; )
+  {
+    SMR::internal::expand_faces(pyr.levels()[k], F);
+    Access::levels(stored)[k].weights = weights.of(pyr.levels()[k], F);
+  }
+  Access::weight_positions(stored).clear();
+  return stored;
+}
+
+// The parts of a file of format 3, written as they are (see pyramid_io.h)
+struct Format3_parts
+{
+  std::uint32_t scheme = 0;
+  std::uint64_t n0 = 0, levels = 0;
+  std::vector<std::uint64_t> dims{3};
+  std::vector<double> positions;
+  std::vector<Index> faces;                              // of M_0
+  std::vector<std::vector<Index> > odd, targets;        // per level
+  std::uint8_t kind = 0;                                 // of channel 0
+  std::vector<std::vector<double> > details;            // kind 2: per level
+  std::vector<SMR::internal::Corrections> corrections;  // kind 2: per level
+  std::vector<double> coarse;                            // kind 2
+  std::string trailing;
+
+  explicit Format3_parts(const SMR::Pyramid<Mesh>& p)
+    : n0(p.number_of_input_vertices()), levels(p.number_of_levels()), positions(p.weight_positions())
+  {
+    SMR::internal::reconstruct_faces(p, 0, faces);
+    for(const auto& l : p.levels())
+    {
+      odd.push_back(l.odd_rows);
+      targets.push_back(l.collapse_targets);
+      details.push_back(l.details[0]);
+      corrections.push_back(l.corrections[0]);
+    }
+    coarse = p.coarse_values()[0];
+  }
+
+  std::string bytes() const
+  {
+    SMR::internal::Byte_writer w;
+    w.scalar(scheme);
+    w.scalar(n0);
+    w.array(dims);
+    w.scalar(levels);
+    w.array(positions);
+    w.array(faces);
+    for(std::size_t k = 0; k < odd.size(); ++k) { w.array(odd[k]); w.array(targets[k]); }
+    w.scalar(kind);
+    if(kind == 2)
+    {
+      for(std::size_t k = 0; k < details.size(); ++k) { w.array(details[k]); w.corrections(corrections[k]); }
+      w.array(coarse);
+    }
+    const std::string payload = w.bytes() + trailing;
+    std::string out(SMR::internal::pyramid_magic, 8);
+    const std::uint32_t version = 3, order = 0x01020304u;
+    const std::uint64_t size = payload.size(), hash = SMR::internal::fnv1a(payload);
+    out.append(reinterpret_cast<const char*>(&version), 4);
+    out.append(reinterpret_cast<const char*>(&order), 4);
+    out.append(reinterpret_cast<const char*>(&size), 8);
+    out += payload;
+    out.append(reinterpret_cast<const char*>(&hash), 8);
+    return out;
+  }
+};
+
 TEST_CASE("crafted pyramid files are refused with a reason", "[attack][io]")
 {
   Mesh m = smr_test::planar_grid<Mesh>(10, 0.3);
-  const SMR::Pyramid<Mesh> good = SMR::decompose(m);
-  REQUIRE(good.number_of_levels() > 2);
-  const std::size_t n1 = good.number_of_vertices(1);
-  // each edit breaks one invariant; the writer writes what it is given, the reader refuses it
+  const SMR::Pyramid<Mesh> decomposed = SMR::decompose(m);
+  REQUIRE(decomposed.number_of_levels() > 2);
+  const std::size_t n1 = decomposed.number_of_vertices(1);
+  // format 2 (the records as they are): each edit breaks one invariant; the writer writes
+  // what it is given, the reader refuses it
+  const SMR::Pyramid<Mesh> good = with_stored_weights(decomposed);
+  {
+    SMR::Pyramid<Mesh> p;
+    std::string error;
+    REQUIRE(read_bytes(bytes_of(good), p, error));
+    CHECK(bytes_of(p).substr(8, 4) == std::string("\x02\0\0\0", 4));
+  }
   const std::vector<std::pair<std::string, std::function<void(SMR::Pyramid<Mesh>&)> > > edits = {
     {"a face corner that is not a vertex of its level", [](SMR::Pyramid<Mesh>& p) { Access::levels(p)[1].removed_faces[0] = Index(p.number_of_vertices(1) + 3); }},
     {"a coarsest face corner outside the coarsest mesh", [](SMR::Pyramid<Mesh>& p) { Access::coarse_faces(p)[0] = Index(p.number_of_vertices(p.number_of_levels())); }},
@@ -211,6 +293,67 @@ TEST_CASE("crafted pyramid files are refused with a reason", "[attack][io]")
     CHECK(error.find("inconsistent pyramid") == 0);
     CHECK(p.number_of_vertices(1) == n1);   // left unchanged
   }
+  // format 3 (positions, faces of M_0, collapses; the rest derived): the unedited parts are
+  // read back as the decomposition made them, each edit is refused
+  const Format3_parts parts(decomposed);
+  {
+    SMR::Pyramid<Mesh> p;
+    std::string error;
+    REQUIRE(read_bytes(parts.bytes(), p, error));
+    CHECK(bytes_of(p) == bytes_of(decomposed));
+    Format3_parts explicit_details = parts;
+    explicit_details.kind = 2;
+    REQUIRE(read_bytes(explicit_details.bytes(), p, error));
+    CHECK(bytes_of(p) == bytes_of(decomposed));
+  }
+  const std::vector<std::pair<std::string, std::function<void(Format3_parts&)> > > edits3 = {
+    {"more levels than vertices", [](Format3_parts& f) { f.levels = f.n0 + 1; }},
+    {"a missing weight position", [](Format3_parts& f) { f.positions.pop_back(); }},
+    {"a weight position that is not finite", [](Format3_parts& f) { f.positions[7] = std::nan(""); }},
+    {"a face corner outside M_0", [](Format3_parts& f) { f.faces[4] = Index(f.n0); }},
+    {"a face of M_0 repeated (no halfedge mesh)", [](Format3_parts& f) { f.faces.insert(f.faces.end(), f.faces.begin(), f.faces.begin() + 3); }},
+    {"a face of M_0 with a vertex twice", [](Format3_parts& f) { f.faces[1] = f.faces[0]; }},
+    {"odd rows not increasing", [](Format3_parts& f) { std::swap(f.odd[0][0], f.odd[0][1]); }},
+    {"an odd row outside its level", [](Format3_parts& f) { f.odd[1].back() = Index(f.n0); }},
+    {"a collapse target missing", [](Format3_parts& f) { f.targets[0].pop_back(); }},
+    {"a collapse target outside its level", [](Format3_parts& f) { f.targets[0][0] = Index(f.n0); }},
+    {"a collapse target that is odd", [](Format3_parts& f) { f.targets[0][0] = f.odd[0][1]; }},
+    {"two vertices collapsed into one", [](Format3_parts& f) { f.targets[0][1] = f.targets[0][0]; }},
+    {"a collapse target that is no neighbour", [](Format3_parts& f) {
+       for(Index v = 0; v < f.n0; ++v)
+         if(!std::binary_search(f.odd[0].begin(), f.odd[0].end(), v)
+            && std::find(f.targets[0].begin(), f.targets[0].end(), v) == f.targets[0].end())
+         {
+           bool neighbour = false;
+           for(std::size_t i = 0; i < f.faces.size(); i += 3)
+             if(std::find(f.faces.begin() + i, f.faces.begin() + i + 3, f.odd[0][0]) != f.faces.begin() + i + 3
+                && std::find(f.faces.begin() + i, f.faces.begin() + i + 3, v) != f.faces.begin() + i + 3)
+               neighbour = true;
+           if(!neighbour) { f.targets[0][0] = v; return; }
+         } }},
+    {"two odd vertices in one face", [](Format3_parts& f) {
+       // the first face's first two corners become the only odd vertices, into its third
+       const Index a = (std::min)(f.faces[0], f.faces[1]), b = (std::max)(f.faces[0], f.faces[1]);
+       f.odd[0] = {a, b};
+       f.targets[0] = {f.faces[2], f.faces[2]}; }},
+    {"a channel kind that does not exist", [](Format3_parts& f) { f.kind = 3; }},
+    {"explicit details of the wrong size", [](Format3_parts& f) { f.kind = 2; f.details[1].resize(f.details[1].size() - 3); }},
+    {"an explicit detail that is infinite", [](Format3_parts& f) { f.kind = 2; f.details[0][4] = std::numeric_limits<double>::infinity(); }},
+    {"a correction outside its level", [](Format3_parts& f) { f.kind = 2; f.corrections[0].emplace_back(Index(3 * f.n0), 1.); }},
+    {"coarsest values of the wrong size", [](Format3_parts& f) { f.kind = 2; f.coarse.push_back(1.); }},
+    {"bytes after the payload", [](Format3_parts& f) { f.trailing = "x"; }},
+  };
+  for(const auto& edit : edits3)
+  {
+    INFO(edit.first);
+    Format3_parts bad = parts;
+    edit.second(bad);
+    SMR::Pyramid<Mesh> p = decomposed;
+    std::string error;
+    CHECK_FALSE(read_bytes(bad.bytes(), p, error));
+    CHECK(error.find("inconsistent pyramid") == 0);
+    CHECK(p.number_of_vertices(1) == n1);   // left unchanged
+  }
   // the two edits of payload words that once crashed reconstruct() and reconstruct_adaptively()
   std::string error;
   SMR::Pyramid<Mesh> p;
@@ -220,7 +363,7 @@ TEST_CASE("crafted pyramid files are refused with a reason", "[attack][io]")
   std::uint32_t version = 9;
   std::memcpy(&v9[8], &version, 4);
   CHECK_FALSE(read_bytes(v9, p, error));
-  CHECK(error == "pyramid format version 9 is not supported (versions 1 and 2 are)");
+  CHECK(error == "pyramid format version 9 is not supported (versions 1 to 3 are)");
 }
 
 TEST_CASE("pyramid files of format version 1 are read and describe their mesh exactly", "[attack][io]")

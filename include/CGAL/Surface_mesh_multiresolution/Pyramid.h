@@ -30,7 +30,9 @@ namespace internal {
 struct Pyramid_level
 {
   std::vector<Index> vertices;                 // input number of every row (increasing); derived, not saved
-  Sparse_weights weights;                      // lambda^k over the rows of M_k
+  // lambda^k over the rows of M_k: stored only in pyramids read from files of format 1 or 2;
+  // otherwise empty, and computed from the pyramid's weight_positions() (level_weights.h)
+  Sparse_weights weights;
   std::vector<std::vector<double> > details;   // per channel: dimension doubles per row of M_k
   // Exactness: f = fl(R f + d) can differ from f by rounding; the few components where it
   // does carry an additive correction, so that reconstruction returns f bit for bit.
@@ -209,6 +211,9 @@ public:
   const std::vector<std::vector<double> >& coarse_values() const { return m_coarse_values; }
   const std::vector<std::size_t>& dimensions() const { return m_dimensions; }
   std::size_t number_of_input_vertices() const { return m_number_of_input_vertices; }
+  // the positions (3 per input vertex) every level's weights are computed from: the input's
+  // (empty where the levels store their weights: pyramids of format 1 and 2 files)
+  const std::vector<double>& weight_positions() const { return m_weight_positions; }
   /// \endcond
 
 private:
@@ -249,6 +254,7 @@ private:
   std::vector<Index> m_coarse_vertices;                 // input numbers of the rows of M_K, increasing (derived, not saved)
   std::vector<Index> m_coarse_faces;                    // 3 rows of M_K per face
   std::vector<std::vector<double> > m_coarse_values;    // per channel, rows of M_K
+  std::vector<double> m_weight_positions;               // 3 per input vertex (level_weights.h)
 };
 
 /// \cond SKIP_IN_MANUAL
@@ -261,6 +267,7 @@ struct Pyramid_access
   template <typename TM> static std::vector<Index>& coarse_faces(Pyramid<TM>& p) { return p.m_coarse_faces; }
   template <typename TM> static std::vector<std::vector<double> >& coarse_values(Pyramid<TM>& p) { return p.m_coarse_values; }
   template <typename TM> static std::vector<std::size_t>& dimensions(Pyramid<TM>& p) { return p.m_dimensions; }
+  template <typename TM> static std::vector<double>& weight_positions(Pyramid<TM>& p) { return p.m_weight_positions; }
   template <typename TM> static void set_number_of_input_vertices(Pyramid<TM>& p, std::size_t n) { p.m_number_of_input_vertices = n; }
   template <typename TM> static void set_relaxation_scheme(Pyramid<TM>& p, Relaxation_scheme s) { p.m_scheme = s; }
 };

@@ -100,6 +100,7 @@ private:
     collapse_face_array(level);
     move_to_next_level(level);
     m_builder = Relaxation_weight_builder();   // a level's halfedges and cotangents follow its size
+    m_weights = Sparse_weights();
     m_visitor.on_level_finished(k, level.odd_rows.size());
     return true;
   }
@@ -138,13 +139,14 @@ private:
 
   void analyse_channels(Pyramid_level& level)
   {
-    std::vector<Relaxation_row_rule> rules;
-    m_builder.build(m_scheme, xyz().data(), nullptr, level.weights, rules);
+    // the weights are not kept: reconstruct() computes them again from the same positions
+    // (Level_weights), which costs less than holding them
+    m_builder.build(m_scheme, xyz().data(), nullptr, m_weights, m_rules);
     const std::size_t nc = m_values.size();
     level.details.resize(nc);
     level.corrections.resize(nc);
     for(std::size_t c = 0; c < nc; ++c)
-      analyse_level(level, level.weights, m_pyr.dimensions()[c], m_values[c], level.details[c], level.corrections[c]);
+      analyse_level(level, m_weights, m_pyr.dimensions()[c], m_values[c], level.details[c], level.corrections[c]);
   }
 
   void collapse_face_array(Pyramid_level& level);
@@ -195,6 +197,8 @@ private:
   Relaxation_scheme m_scheme;
   Visitor& m_visitor;
   Relaxation_weight_builder m_builder;
+  Sparse_weights m_weights;                     // lambda^k of the current level
+  std::vector<Relaxation_row_rule> m_rules;
   std::vector<unsigned char> m_on_border, m_locked, m_is_odd;
   std::vector<Collapse> m_accepted;
   std::vector<std::pair<Index, std::array<Index, 3> > > m_removed;   // (position, corners) of the faces a level removes
@@ -394,6 +398,7 @@ Pyramid<TriangleMesh> decompose(const TriangleMesh& tm, const NamedParameters& n
   internal::Pyramid_access::set_number_of_input_vertices(pyr, im.number_of_vertices());
   std::vector<std::vector<double> > values
     = internal::read_input_values(im, vpm, gt, maps, internal::Pyramid_access::dimensions(pyr));
+  internal::Pyramid_access::weight_positions(pyr) = values[0];
   Cost_model cost_model(tm, vpm, CGAL::get_initialized_vertex_index_map(tm, np), im, gt,
                         get_parameter(np, CGAL::internal_np::get_cost_policy));
   std::vector<internal::Index> faces;

@@ -13,6 +13,7 @@
 #include <CGAL/Surface_mesh_multiresolution/internal/helpers.h>
 #include <CGAL/Surface_mesh_multiresolution/internal/level_transform.h>
 #include <CGAL/Surface_mesh_multiresolution/internal/relaxation_weights.h>
+#include <CGAL/Surface_mesh_multiresolution/internal/level_weights.h>
 #include <CGAL/Surface_mesh_multiresolution/decompose.h>
 #include <CGAL/Surface_mesh_multiresolution/Denoising_visitor_base.h>
 #include <CGAL/Surface_mesh_multiresolution/filter.h>
@@ -248,21 +249,19 @@ inline void shrink_details_towards_threshold(std::vector<double>& d, std::size_t
   }
 }
 
-// Channel c of the pyramid analysed again, level by level in the rows of each level, from its
-// new values x on M_0 (rows = input numbers): the details, corrections and coarsest values
-// then describe x exactly.
+// Channel c of the pyramid analysed again from its new values x on M_0 (rows = input
+// numbers): the details, corrections and coarsest values then describe x exactly.
 template <typename TriangleMesh>
 void analyse_again(Pyramid<TriangleMesh>& pyr, std::size_t c, const std::vector<double>& x)
 {
-  const std::size_t dim = pyr.channel_dimension(c);
-  std::vector<double> f(x), next;
-  for(Pyramid_level& level : Pyramid_access::levels(pyr))
-  {
-    analyse_level(level, level.weights, dim, f, level.details[c], level.corrections[c]);
-    values_of_next_level(level, dim, f, next);
-    f.swap(next);
-  }
-  Pyramid_access::coarse_values(pyr)[c] = f;
+  std::vector<std::vector<double> > values(pyr.number_of_channels());
+  values[c] = x;
+  std::vector<Pyramid_level>& levels = Pyramid_access::levels(pyr);
+  analyse_levels(pyr, {c}, values, [&](std::size_t k, std::size_t, std::vector<double>& d, Corrections& corrections) {
+    levels[k].details[c].swap(d);
+    levels[k].corrections[c].swap(corrections);
+  });
+  Pyramid_access::coarse_values(pyr)[c] = coarsest_values(pyr, pyr.channel_dimension(c), x);
 }
 
 } // namespace internal

@@ -9,7 +9,9 @@
 #define CGAL_SURFACE_MESH_MULTIRESOLUTION_PYRAMID_IO_H
 
 #include <CGAL/Surface_mesh_multiresolution/internal/config.h>
+#include <CGAL/Surface_mesh_multiresolution/internal/level_weights.h>
 #include <CGAL/Surface_mesh_multiresolution/internal/Pyramid_checks.h>
+#include <CGAL/Surface_mesh_multiresolution/reconstruct.h>
 #include <CGAL/Surface_mesh_multiresolution/Pyramid.h>
 
 #include <algorithm>
@@ -27,15 +29,30 @@ namespace CGAL {
 namespace Surface_mesh_multiresolution {
 namespace internal {
 
-// The binary pyramid format, version 2 (little-endian, IEEE-754 doubles):
+// The binary pyramid format (little-endian, IEEE-754 doubles):
 //   8 bytes  magic "SMRPYR01"
-//   u32      format version (2)
+//   u32      format version (3; a pyramid that stores its weights, read from a file of format
+//            1 or 2, is written in format 2)
 //   u32      0x01020304 (byte-order check)
 //   u64      payload size in bytes
 //   payload  the pyramid's arrays, each as u64 length + elements
 //   u64      FNV-1a 64-bit hash of the payload
-// Payload: u32 relaxation scheme, u64 number of input vertices, the channel dimensions,
-// u64 K, then per level (rows of M_k): weights (offsets, columns, values), per channel the
+// Payload of version 3: u32 relaxation scheme, u64 number of input vertices n, the channel
+// dimensions, u64 K, the weight positions (3 n), the face array of M_0, per level the odd rows
+// and the collapse targets; then per channel a u8 kind and its data:
+//   0 (channel 0 only): its values on M_0 are the weight positions, nothing more;
+//   1: its values on M_0 (n x dimension): the details and corrections are those of their
+//      analysis (the pyramid of decompose() or denoise());
+//   2: the details and corrections of every level, then the coarsest values (a channel whose
+//      details were edited: filters, a pyramid read in format 2).
+// Everything else is derived at load with the decomposition's own code: the even rows and
+// the vertices of every level, the removed faces and renamed corners of each level (the
+// collapses replayed on the face arrays), the weights (Level_weights) and the details of
+// the kinds 0 and 1 (bit for bit those written, on the machine that reads). A pyramid file is
+// then about 1.5 times the binary PLY of its input (7-8 times in format 2, which stored the
+// weights and every level's details and records).
+// Payload of version 2: u32 relaxation scheme, u64 number of input vertices, the channel
+// dimensions, u64 K, then per level (rows of M_k): weights (offsets, columns, values), per channel the
 // details and corrections, odd rows, collapse targets, removed face positions, removed faces,
 // renamed corners, renamed vertices; then the coarsest faces (rows of M_K) and, per channel,
 // the coarsest values. Even rows and vertex numbers are derived from the odd rows.
@@ -45,7 +62,7 @@ namespace internal {
 // Why by hand: no serialisation library is among the dependencies, and the format is
 // a handful of arrays.
 constexpr char pyramid_magic[9] = "SMRPYR01";
-constexpr std::uint32_t pyramid_format_version = 2;
+constexpr std::uint32_t pyramid_format_version = 3;
 
 inline std::uint64_t fnv1a(const std::string& bytes)
 {
@@ -170,6 +187,8 @@ bool read_payload(const std::string& bytes, std::uint32_t version, Pyramid<Trian
   Pyramid_access::dimensions(p).assign(dims.begin(), dims.end());
   std::vector<Pyramid_level>& L = Pyramid_access::levels(p);
   L.resize(static_cast<std::size_t>(levels));
+  if(version == 3)
+    return read_payload_v3(r, p, error);
   for(Pyramid_level& l : L)
     if(!read_level(r, version, dims.size(), l)) return false;
   std::vector<Index> coarse_vertices;
@@ -196,6 +215,200 @@ bool read_payload(const std::string& bytes, std::uint32_t version, Pyramid<Trian
   return error.empty();
 }
 
+// Version 3: the records of level k replayed on its face array F (rows of M_k, all below its
+// number of rows), which becomes M_{k+1}'s: as collapse_face_array() makes them in
+// decompose() (a removed face holds an odd vertex and its target; the other corners of odd
+// vertices are renamed, in the order of the odd rows, then of the corners). An error in words
+// where the odd rows and targets cannot be those of a level.
+inline std::string replay_collapses(Pyramid_level& lev, std::vector<Index>& F)
+{
+  const std::size_t n = lev.number_of_rows();
+  if(lev.collapse_targets.size() != lev.odd_rows.size())
+    return "not one collapse target per odd vertex";
+  std::vector<unsigned char> is_odd;
+  odd_row_flags(lev, is_odd);
+  std::vector<Index> target_of(n, invalid_index), rank(n, invalid_index);
+  for(std::size_t q = 0; q < lev.odd_rows.size(); ++q)
+  {
+    const Index t = lev.collapse_targets[q];
+    if(t >= n || is_odd[t])
+      return "a collapse target is outside the level or odd";
+    target_of[lev.odd_rows[q]] = t;
+    rank[lev.odd_rows[q]] = static_cast<Index>(q);
+  }
+  std::vector<Index> next_row(n, invalid_index);
+  for(std::size_t j = 0; j < lev.even_rows.size(); ++j)
+    next_row[lev.even_rows[j]] = static_cast<Index>(j);
+  lev.removed_face_positions.clear();
+  lev.removed_faces.clear();
+  std::vector<std::pair<Index, Index> > renamed;   // (rank of the odd row, corner), in corner order
+  std::size_t write = 0;
+  for(std::size_t p = 0; p < F.size() / 3; ++p)
+  {
+    Index* t = F.data() + 3 * p;
+    int odd = -1;
+    for(int i = 0; i < 3; ++i)
+      if(is_odd[t[i]])
+      {
+        if(odd >= 0)
+          return "a face holds two odd vertices";
+        odd = i;
+      }
+    if(odd >= 0)
+    {
+      const Index e = target_of[t[odd]];
+      if(t[0] == e || t[1] == e || t[2] == e)
+      {
+        lev.removed_face_positions.push_back(static_cast<Index>(p));
+        lev.removed_faces.insert(lev.removed_faces.end(), t, t + 3);
+        continue;
+      }
+      renamed.emplace_back(rank[t[odd]], static_cast<Index>(3 * p + odd));
+      t[odd] = e;
+    }
+    for(int i = 0; i < 3; ++i)
+      F[3 * write + i] = next_row[t[i]];
+    ++write;
+  }
+  F.resize(3 * write);
+  std::stable_sort(renamed.begin(), renamed.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  lev.renamed_corners.resize(renamed.size());
+  lev.renamed_vertices.resize(renamed.size());
+  for(std::size_t q = 0; q < renamed.size(); ++q)
+  {
+    lev.renamed_corners[q] = renamed[q].second;
+    lev.renamed_vertices[q] = lev.odd_rows[renamed[q].first];
+  }
+  return std::string();
+}
+
+// whether two arrays of doubles hold the same bits (-0.0 is not 0.0)
+inline bool same_bits(const std::vector<double>& a, const std::vector<double>& b)
+{
+  return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0);
+}
+
+inline bool same_bits(const Corrections& a, const Corrections& b)
+{
+  if(a.size() != b.size()) return false;
+  for(std::size_t i = 0; i < a.size(); ++i)
+    if(a[i].first != b[i].first || std::memcmp(&a[i].second, &b[i].second, sizeof(double)) != 0) return false;
+  return true;
+}
+
+// the payload of version 3 (see above): the values of every channel whose details are those
+// of its analysis, the details of the others
+template <typename TriangleMesh>
+void write_payload_v3(const Pyramid<TriangleMesh>& pyr, Byte_writer& w)
+{
+  const std::size_t nc = pyr.number_of_channels();
+  Values_workspace ws;
+  reconstruct_values(pyr, 0, ws);               // exact; ws.faces: the face array of M_0
+  std::vector<std::size_t> all(nc);
+  for(std::size_t c = 0; c < nc; ++c) all[c] = c;
+  std::vector<unsigned char> analysed(nc, 1);
+  analyse_levels(pyr, all, ws.values, [&](std::size_t k, std::size_t c, const std::vector<double>& d, const Corrections& corr) {
+    const Pyramid_level& lev = pyr.levels()[k];
+    analysed[c] = analysed[c] && same_bits(d, lev.details[c]) && same_bits(corr, lev.corrections[c]);
+  });
+  for(std::size_t c = 0; c < nc; ++c)
+    analysed[c] = analysed[c] && same_bits(coarsest_values(pyr, pyr.dimensions()[c], ws.values[c]), pyr.coarse_values()[c]);
+
+  w.array(pyr.weight_positions());
+  w.array(ws.faces);
+  for(const Pyramid_level& l : pyr.levels())
+  {
+    w.array(l.odd_rows);
+    w.array(l.collapse_targets);
+  }
+  for(std::size_t c = 0; c < nc; ++c)
+  {
+    const std::uint8_t kind = !analysed[c] ? 2 : (c == 0 && same_bits(ws.values[0], pyr.weight_positions()) ? 0 : 1);
+    w.scalar(kind);
+    if(kind == 1)
+      w.array(ws.values[c]);
+    if(kind == 2)
+    {
+      for(const Pyramid_level& l : pyr.levels()) { w.array(l.details[c]); w.corrections(l.corrections[c]); }
+      w.array(pyr.coarse_values()[c]);
+    }
+  }
+}
+
+// the rest of a version 3 payload after K (see above) into `p`, whose scheme, number of input
+// vertices, dimensions and number of levels are set; then every derived array
+template <typename TriangleMesh>
+bool read_payload_v3(Byte_reader& r, Pyramid<TriangleMesh>& p, std::string& error)
+{
+  const std::size_t n0 = p.number_of_input_vertices(), nc = p.number_of_channels();
+  std::vector<Pyramid_level>& L = Pyramid_access::levels(p);
+  std::vector<double>& positions = Pyramid_access::weight_positions(p);
+  std::vector<Index> F;
+  if(!r.array(positions) || positions.size() != 3 * n0 || !r.array(F) || F.size() % 3 != 0 || !all_below(F, n0))
+    return false;
+  for(Pyramid_level& l : L)
+    if(!r.array(l.odd_rows) || !r.array(l.collapse_targets)) return false;
+  std::vector<std::vector<double> > values(nc);
+  std::vector<std::size_t> analysed;
+  for(std::size_t c = 0; c < nc; ++c)
+  {
+    std::uint8_t kind;
+    if(!r.scalar(kind) || kind > 2 || (kind == 0 && c != 0)) return false;
+    if(kind == 0)
+      values[0] = positions;
+    else if(kind == 1 && (!r.array(values[c]) || values[c].size() != n0 * p.dimensions()[c]))
+      return false;
+    if(kind < 2)
+    {
+      analysed.push_back(c);
+      continue;
+    }
+    for(Pyramid_level& l : L)
+    {
+      l.details.resize(nc);
+      l.corrections.resize(nc);
+      if(!r.array(l.details[c]) || !r.corrections(l.corrections[c])) return false;
+    }
+    Pyramid_access::coarse_values(p).resize(nc);
+    if(!r.array(Pyramid_access::coarse_values(p)[c])) return false;
+  }
+  if(!r.at_end()) return false;
+  error = derive_rows(p);
+  for(std::size_t k = 0; k < L.size() && error.empty(); ++k)
+  {
+    error = replay_collapses(L[k], F);
+    if(!error.empty())
+      error = "level " + std::to_string(k) + ": " + error;
+  }
+  if(!error.empty())
+    return false;
+  Pyramid_access::coarse_faces(p).swap(F);
+  for(std::size_t c : analysed)
+    if(!all_finite(values[c]))
+    {
+      error = "values of channel " + std::to_string(c) + " not finite";
+      return false;
+    }
+  // the faces must form halfedge meshes before weights are computed on them
+  error = check_pyramid_faces(p);
+  if(!error.empty())
+    return false;
+  for(Pyramid_level& l : L)
+  {
+    l.details.resize(nc);
+    l.corrections.resize(nc);
+  }
+  Pyramid_access::coarse_values(p).resize(nc);
+  analyse_levels(p, analysed, values, [&](std::size_t k, std::size_t c, std::vector<double>& d, Corrections& corr) {
+    L[k].details[c].swap(d);
+    L[k].corrections[c].swap(corr);
+  });
+  for(std::size_t c : analysed)
+    Pyramid_access::coarse_values(p)[c] = coarsest_values(p, p.dimensions()[c], values[c]);
+  error = check_pyramid_records(p);
+  return error.empty();
+}
+
 } // namespace internal
 
 namespace IO {
@@ -203,7 +416,13 @@ namespace IO {
 /*!
  * \ingroup PkgSurfaceMeshMultiresolutionRef
  * writes `pyr` to `os` in the package's versioned binary format (a header, the sizes of
- * all arrays and a checksum of the content). Open the stream in binary mode.
+ * all arrays and a checksum of the content). Open the stream in binary mode. The file holds
+ * the input positions, the face array of \f$ M_0 \f$, the collapses of every level and, for
+ * every channel, its values on \f$ M_0 \f$ where its details are those of their analysis
+ * (the pyramid of `decompose()` or `denoise()`), its details otherwise (edited by a filter):
+ * the rest is computed again when the file is read, bit for bit (about 1.5 times the size of
+ * the input's binary PLY file). Writing reconstructs and analyses the pyramid once to tell
+ * which channels were edited.
  * \returns `true` if the stream is good after writing
  */
 template <typename TriangleMesh>
@@ -215,26 +434,34 @@ bool write_pyramid(std::ostream& os, const Pyramid<TriangleMesh>& pyr)
   std::vector<std::uint64_t> dims(pyr.dimensions().begin(), pyr.dimensions().end());
   w.array(dims);
   w.scalar(std::uint64_t(pyr.number_of_levels()));
-  for(const internal::Pyramid_level& l : pyr.levels())
+  // format 3 derives the weights from the positions; a pyramid that stores its weights (read
+  // from a file of format 1 or 2) is written in format 2
+  const std::uint32_t version = pyr.weight_positions().empty() ? 2 : internal::pyramid_format_version;
+  if(version == 3)
+    internal::write_payload_v3(pyr, w);
+  else
   {
-    w.array(l.weights.offsets);
-    w.array(l.weights.columns);
-    w.array(l.weights.values);
-    for(std::size_t c = 0; c < dims.size(); ++c) { w.array(l.details[c]); w.corrections(l.corrections[c]); }
-    w.array(l.odd_rows);
-    w.array(l.collapse_targets);
-    w.array(l.removed_face_positions);
-    w.array(l.removed_faces);
-    w.array(l.renamed_corners);
-    w.array(l.renamed_vertices);
+    for(const internal::Pyramid_level& l : pyr.levels())
+    {
+      w.array(l.weights.offsets);
+      w.array(l.weights.columns);
+      w.array(l.weights.values);
+      for(std::size_t c = 0; c < dims.size(); ++c) { w.array(l.details[c]); w.corrections(l.corrections[c]); }
+      w.array(l.odd_rows);
+      w.array(l.collapse_targets);
+      w.array(l.removed_face_positions);
+      w.array(l.removed_faces);
+      w.array(l.renamed_corners);
+      w.array(l.renamed_vertices);
+    }
+    w.array(pyr.coarse_faces());
+    for(std::size_t c = 0; c < dims.size(); ++c) w.array(pyr.coarse_values()[c]);
   }
-  w.array(pyr.coarse_faces());
-  for(std::size_t c = 0; c < dims.size(); ++c) w.array(pyr.coarse_values()[c]);
 
   const std::uint32_t byte_order = 0x01020304u;
   const std::uint64_t size = w.bytes().size(), hash = internal::fnv1a(w.bytes());
   os.write(internal::pyramid_magic, 8);
-  os.write(reinterpret_cast<const char*>(&internal::pyramid_format_version), 4);
+  os.write(reinterpret_cast<const char*>(&version), 4);
   os.write(reinterpret_cast<const char*>(&byte_order), 4);
   os.write(reinterpret_cast<const char*>(&size), 8);
   os.write(w.bytes().data(), static_cast<std::streamsize>(size));
@@ -244,8 +471,10 @@ bool write_pyramid(std::ostream& os, const Pyramid<TriangleMesh>& pyr)
 
 /*!
  * \ingroup PkgSurfaceMeshMultiresolutionRef
- * reads a pyramid written by `write_pyramid()` (format version 2, or version 1, which is
- * converted). Files are untrusted input: besides the header, sizes and checksum, the content
+ * reads a pyramid written by `write_pyramid()` (format version 3, or versions 1 and 2 of
+ * earlier releases, whose pyramids keep the weights they store). The derived arrays (records
+ * of the collapses, weights, details of unedited channels) are computed again: reading costs
+ * about a third of a decomposition. Files are untrusted input: besides the header, sizes and checksum, the content
  * is checked against every invariant of a pyramid (indices within their levels, collapse
  * records consistent with the faces, every level a halfedge mesh, finite numbers...), so that
  * a pyramid this function accepts is safe in every function of the package. A truncated,
@@ -262,7 +491,7 @@ bool read_pyramid(std::istream& is, Pyramid<TriangleMesh>& pyr, std::string& err
   if(!is.read(magic, 8) || std::memcmp(magic, internal::pyramid_magic, 8) != 0) return false;
   if(!is.read(reinterpret_cast<char*>(&version), 4) || version < 1 || version > internal::pyramid_format_version)
   {
-    error = "pyramid format version " + std::to_string(version) + " is not supported (versions 1 and 2 are)";
+    error = "pyramid format version " + std::to_string(version) + " is not supported (versions 1 to 3 are)";
     return false;
   }
   error = "truncated header or foreign byte order";

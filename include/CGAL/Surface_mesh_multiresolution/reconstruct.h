@@ -12,6 +12,7 @@
 #include <CGAL/Surface_mesh_multiresolution/internal/channels.h>
 #include <CGAL/Surface_mesh_multiresolution/internal/helpers.h>
 #include <CGAL/Surface_mesh_multiresolution/internal/level_transform.h>
+#include <CGAL/Surface_mesh_multiresolution/internal/level_weights.h>
 #include <CGAL/Surface_mesh_multiresolution/internal/parallel.h>
 #include <CGAL/Surface_mesh_multiresolution/internal/Triangle_halfedges.h>
 #include <CGAL/Surface_mesh_multiresolution/parameters.h>
@@ -206,6 +207,7 @@ struct Values_workspace
   std::vector<std::vector<double> > values;   // per channel, rows of the current level
   std::vector<double> state, prediction;
   std::vector<unsigned char> is_odd;
+  std::vector<Index> faces;                    // the face array of the current level
 
   template <typename TriangleMesh>
   void reserve(const Pyramid<TriangleMesh>& pyr, std::size_t level)
@@ -218,28 +220,38 @@ struct Values_workspace
     state.reserve(n * dim);
     prediction.reserve(n * dim);
     is_odd.reserve(n);
+    faces.reserve(3 * pyr.number_of_faces(level));
   }
 };
 
 // The values of every channel in rows of M_level (ws.values[c][r * dim] is the value of
 // pyr.vertices(level)[r]; at level 0 rows are the input's vertex numbers), rebuilt from the
-// coarsest mesh by Eq. 6 and 7 level by level, in the rows of each level.
+// coarsest mesh by Eq. 6 and 7 level by level, in the rows of each level. The weights of
+// each level are computed on its face array (Level_weights), which is rebuilt on the way:
+// on return ws.faces holds M_level's (empty for a pyramid that stores its weights).
 template <typename TriangleMesh>
 void reconstruct_values(const Pyramid<TriangleMesh>& pyr, std::size_t level, Values_workspace& ws)
 {
   const std::size_t nc = pyr.number_of_channels();
+  Level_weights weights(pyr);
   ws.values.resize(nc);
   for(std::size_t c = 0; c < nc; ++c)
     ws.values[c].assign(pyr.coarse_values()[c].begin(), pyr.coarse_values()[c].end());
+  ws.faces.clear();
+  if(weights.computed())
+    ws.faces.assign(pyr.coarse_faces().begin(), pyr.coarse_faces().end());
   for(std::size_t k = pyr.number_of_levels(); k-- > level; )
   {
     const Pyramid_level& lev = pyr.levels()[k];
+    if(weights.computed())
+      expand_faces(lev, ws.faces);
+    const Sparse_weights& w = weights.of(lev, ws.faces);
     odd_row_flags(lev, ws.is_odd);
     for(std::size_t c = 0; c < nc; ++c)
     {
       const std::size_t dim = pyr.dimensions()[c];
       spread_to_level(lev, dim, ws.values[c].data(), ws.state);
-      synthesize_level(lev, lev.weights, dim, lev.details[c].data(), lev.corrections[c], ws.is_odd, ws.state, ws.prediction);
+      synthesize_level(lev, w, dim, lev.details[c].data(), lev.corrections[c], ws.is_odd, ws.state, ws.prediction);
       ws.values[c].swap(ws.state);
     }
   }
@@ -251,13 +263,14 @@ template <typename TriangleMesh>
 void reconstruct_arrays(const Pyramid<TriangleMesh>& pyr, std::size_t level,
                         std::vector<std::vector<double> >& values, std::vector<Index>& F, bool faces = true)
 {
-  if(faces)
-    reconstruct_faces(pyr, level, F);
-  else
-    F.clear();
   Values_workspace ws;
   reconstruct_values(pyr, level, ws);
   values.swap(ws.values);
+  F.clear();
+  if(faces && !pyr.weight_positions().empty())
+    F.swap(ws.faces);
+  else if(faces)
+    reconstruct_faces(pyr, level, F);
 }
 
 // Writes the vertices `verts` (input numbers, increasing) with their values and the faces

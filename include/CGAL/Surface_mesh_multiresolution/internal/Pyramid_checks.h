@@ -30,8 +30,10 @@ namespace internal {
 //  (2) rows: n_0 is the number of input vertices; odd_rows of level k are increasing and
 //      below n_k; even_rows are the other rows, increasing; n_{k+1} = |even_rows_k|;
 //      vertices(0) = 0..n_0-1 and vertices(k+1)[j] = vertices(k)[even_rows_k[j]];
-//  (3) weights: CSR over n_k rows (offsets from 0, non-decreasing, ending at the number of
-//      entries), columns below n_k, finite values;
+//  (3) weights: either the pyramid has weight positions (3 finite doubles per input vertex)
+//      and no level stores weights, or it has none and every level stores a CSR over n_k
+//      rows (offsets from 0, non-decreasing, ending at the number of entries), columns below
+//      n_k, finite values;
 //  (4) details: n_k * dimension finite doubles per channel; corrections at increasing
 //      positions below n_k * dimension, finite; coarsest values: n_K * dimension finite doubles;
 //  (5) collapse targets: one per odd row, an even row of M_k, no two the same;
@@ -117,15 +119,17 @@ std::string derive_rows(Pyramid<TriangleMesh>& pyr)
 }
 
 // (3), (4), (5) for one level
-inline std::string check_level_records(const Pyramid_level& lev, const std::vector<std::size_t>& dims)
+inline std::string check_level_records(const Pyramid_level& lev, const std::vector<std::size_t>& dims, bool weights_stored)
 {
   const std::size_t n = lev.number_of_rows();
   const Sparse_weights& w = lev.weights;
-  if(w.offsets.size() != n + 1 || w.offsets[0] != 0 || w.offsets[n] != w.columns.size() || w.columns.size() != w.values.size())
+  if(!weights_stored && (w.offsets.size() > 1 || !w.columns.empty() || !w.values.empty()))
+    return "weights stored in a pyramid that computes them";
+  if(weights_stored && (w.offsets.size() != n + 1 || w.offsets[0] != 0 || w.offsets[n] != w.columns.size() || w.columns.size() != w.values.size()))
     return "weights of the wrong size";
-  for(std::size_t i = 0; i < n; ++i)
+  for(std::size_t i = 0; weights_stored && i < n; ++i)
     if(w.offsets[i] > w.offsets[i + 1]) return "weight offsets decrease";
-  if(!all_below(w.columns, n) || !all_finite(w.values))
+  if(weights_stored && (!all_below(w.columns, n) || !all_finite(w.values)))
     return "a weight refers to a vertex outside the level or is not finite";
   if(lev.details.size() != dims.size() || lev.corrections.size() != dims.size())
     return "details of the wrong number of channels";
@@ -223,10 +227,9 @@ inline std::string check_and_expand_faces(const Pyramid_level& lev, std::vector<
   return check_collapses(lev, F);
 }
 
-// The first invariant `pyr` breaks, in words; empty if it holds them all. Expects the rows
-// derived (derive_rows()) for pyramids read from a file.
+// (1) to (5): the first invariant `pyr` breaks, in words; empty if it holds them all
 template <typename TriangleMesh>
-std::string check_pyramid(const Pyramid<TriangleMesh>& pyr)
+std::string check_pyramid_records(const Pyramid<TriangleMesh>& pyr)
 {
   const std::vector<std::size_t>& dims = pyr.dimensions();
   if(dims.empty() || dims[0] != 3)
@@ -235,13 +238,16 @@ std::string check_pyramid(const Pyramid<TriangleMesh>& pyr)
     if(d == 0 || d > 4096) return "a channel dimension is 0 or above 4096";
   const std::size_t K = pyr.number_of_levels();
   std::size_t n = pyr.number_of_input_vertices();
+  const bool weights_stored = pyr.weight_positions().empty();
+  if(!weights_stored && (pyr.weight_positions().size() != 3 * n || !all_finite(pyr.weight_positions())))
+    return "weight positions of the wrong size or not finite";
   for(std::size_t k = 0; k < K; ++k)
   {
     const Pyramid_level& lev = pyr.levels()[k];
     if(lev.number_of_rows() != n || !strictly_increasing_below(lev.odd_rows, n)
        || lev.even_rows.size() + lev.odd_rows.size() != n || !strictly_increasing_below(lev.even_rows, n))
       return "level " + std::to_string(k) + ": rows inconsistent with the level above";
-    const std::string why = check_level_records(lev, dims);
+    const std::string why = check_level_records(lev, dims, weights_stored);
     if(!why.empty())
       return "level " + std::to_string(k) + ": " + why;
     n = lev.even_rows.size();
@@ -251,6 +257,14 @@ std::string check_pyramid(const Pyramid<TriangleMesh>& pyr)
   for(std::size_t c = 0; c < dims.size(); ++c)
     if(pyr.coarse_values()[c].size() != n * dims[c] || !all_finite(pyr.coarse_values()[c]))
       return "coarsest values of channel " + std::to_string(c) + " of the wrong size or not finite";
+  return std::string();
+}
+
+// (6) and (7), on the rows (2): the first invariant `pyr` breaks, in words; empty if it holds them all
+template <typename TriangleMesh>
+std::string check_pyramid_faces(const Pyramid<TriangleMesh>& pyr)
+{
+  const std::size_t K = pyr.number_of_levels(), n = pyr.vertices(K).size();
   std::vector<Index> F = pyr.coarse_faces();
   if(F.size() % 3 != 0 || !all_below(F, n) || !is_halfedge_face_set(n, F))
     return "the coarsest faces are not a halfedge mesh of the coarsest vertices";
@@ -261,6 +275,15 @@ std::string check_pyramid(const Pyramid<TriangleMesh>& pyr)
       return "level " + std::to_string(k) + ": " + why;
   }
   return std::string();
+}
+
+// The first invariant `pyr` breaks, in words; empty if it holds them all. Expects the rows
+// derived (derive_rows()) for pyramids read from a file.
+template <typename TriangleMesh>
+std::string check_pyramid(const Pyramid<TriangleMesh>& pyr)
+{
+  std::string why = check_pyramid_records(pyr);
+  return why.empty() ? check_pyramid_faces(pyr) : why;
 }
 
 } // namespace internal

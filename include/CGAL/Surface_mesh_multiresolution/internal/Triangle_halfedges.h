@@ -22,6 +22,35 @@ namespace CGAL {
 namespace Surface_mesh_multiresolution {
 namespace internal {
 
+// The face halfedges of a triangle array (halfedge 3f+k from corner k to corner k+1 of face
+// f) listed by source in CSR, by a counting sort, so in face order: the corners around every
+// vertex, with the vertex after each corner in its face (out_target) and, `with_apexes`, the
+// vertex before it (out_apex). A vertex's row is out[offsets[v]] .. out[offsets[v + 1] - 1].
+inline void list_face_halfedges_by_source(std::size_t n, const std::vector<Index>& tri, bool with_apexes,
+                                          std::vector<Index>& offsets, std::vector<Index>& out,
+                                          std::vector<Index>& out_target, std::vector<Index>& out_apex)
+{
+  const Index h0 = static_cast<Index>(tri.size());
+  offsets.assign(n + 1, 0);
+  for(Index h = 0; h < h0; ++h)
+    ++offsets[tri[h] + 1];
+  for(std::size_t i = 0; i < n; ++i)
+    offsets[i + 1] += offsets[i];
+  out.resize(h0);
+  out_target.resize(h0);
+  out_apex.resize(with_apexes ? h0 : 0);
+  std::vector<Index> fill(offsets.begin(), offsets.end() - 1);
+  for(Index h = 0; h < h0; ++h)
+  {
+    const Index k = fill[tri[h]]++;
+    const Index next = h % 3 == 2 ? h - 2 : h + 1;
+    out[k] = h;
+    out_target[k] = tri[next];
+    if(with_apexes)
+      out_apex[k] = tri[next % 3 == 2 ? next - 2 : next + 1];
+  }
+}
+
 // Index-based halfedge structure of a triangle mesh, built from its triangle array alone
 // (no walk on the mesh): halfedge 3f+k goes from corner k to corner k+1 of face f; the
 // halfedges of border edges that have no face are numbered after them. The outgoing
@@ -87,27 +116,9 @@ public:
   }
 
 private:
-  // out_offsets, out, out_target (and out_apex): the face halfedges by source (counting sort)
   void list_outgoing_face_halfedges(const std::vector<Index>& tri, bool with_apexes)
   {
-    const Index h0 = static_cast<Index>(3 * nf);
-    out_offsets.assign(n + 1, 0);
-    for(Index h = 0; h < h0; ++h)
-      ++out_offsets[tri[h] + 1];
-    for(std::size_t i = 0; i < n; ++i)
-      out_offsets[i + 1] += out_offsets[i];
-    out.resize(h0);
-    out_target.resize(h0);
-    out_apex.resize(with_apexes ? h0 : 0);
-    std::vector<Index> fill(out_offsets.begin(), out_offsets.end() - 1);
-    for(Index h = 0; h < h0; ++h)
-    {
-      const Index k = fill[tri[h]]++;
-      out[k] = h;
-      out_target[k] = tri[next_in_face(h)];
-      if(with_apexes)
-        out_apex[k] = tri[next_in_face(next_in_face(h))];
-    }
+    list_face_halfedges_by_source(n, tri, with_apexes, out_offsets, out, out_target, out_apex);
   }
 
   // Rings longer than long_ring are also listed sorted by target, so that finding a target

@@ -80,68 +80,203 @@ public:
   // an SOD row is used when the sum of the absolute values of its weights is at most this
   static constexpr double max_sod_absolute_sum = 4.;
 
+  // With apexes (the decomposition's selection reads them) the halfedges are built at once;
+  // otherwise only when a scheme needs them (the hinges of SOD) or connectivity() is asked:
+  // the curvature and uniform weights read the corners around each vertex only.
   void set_connectivity(std::size_t n, const std::vector<Index>& triangles, bool with_apexes = false)
   {
     m_triangles = &triangles;
-    m_mesh.build(n, triangles, with_apexes);
+    m_n = n;
+    m_has_halfedges = with_apexes;
+    m_has_corners = false;
+    if(with_apexes)
+      m_mesh.build(n, triangles, true);
   }
 
   // the halfedges of the last connectivity set
-  const Triangle_halfedges& connectivity() const { return m_mesh; }
+  const Triangle_halfedges& connectivity()
+  {
+    halfedges();
+    return m_mesh;
+  }
 
   // xyz: 3 doubles per row; fixed: nullptr or one flag per row (constrained vertices)
   void build(Relaxation_scheme scheme, const double* xyz, const unsigned char* fixed,
              Sparse_weights& w, std::vector<Relaxation_row_rule>& rules)
   {
-    const std::size_t n = m_mesh.n;
+    const std::size_t n = m_n;
     rules.resize(n);
     w.offsets.resize(n + 1);
     w.offsets[0] = 0;
-    if(scheme != Relaxation_scheme::UNIFORM)
-      compute_cotangents(xyz);
-
-    if(scheme != Relaxation_scheme::SECOND_ORDER_DIFFERENCE)
+    if(scheme == Relaxation_scheme::SECOND_ORDER_DIFFERENCE)
     {
-      // two passes over independent rows (parallel): the length of every row, then the rows
-      parallel_for_blocks(n, [&](std::size_t first, std::size_t last) {
-        for(std::size_t i = first; i < last; ++i)
-        {
-          rules[i] = structural_rule(i, fixed);
-          w.offsets[i + 1] = static_cast<Index>(row_length(i, rules[i]));
-        }
-      });
-      for(std::size_t i = 0; i < n; ++i)
-        w.offsets[i + 1] += w.offsets[i];
-      w.columns.resize(w.offsets[n]);
-      w.values.resize(w.offsets[n]);
-      parallel_for_blocks(n, [&](std::size_t first, std::size_t last) {
-        for(std::size_t i = first; i < last; ++i)
-        {
-          Index* col = w.columns.data() + w.offsets[i];
-          double* val = w.values.data() + w.offsets[i];
-          if(rules[i] == Relaxation_row_rule::FIXED)
-          {
-            *col = static_cast<Index>(i);
-            *val = 1.;
-          }
-          else if(rules[i] == Relaxation_row_rule::BORDER)
-            border_row(scheme, i, xyz, col, val);
-          else if(scheme == Relaxation_scheme::UNIFORM)
-            uniform_row(i, col, val);
-          else
-            rules[i] = curvature_row(i, col, val);
-        }
-      });
+      halfedges();
+      compute_cotangents(xyz);
+      build_sod_rows(xyz, fixed, w, rules);
       return;
     }
-    build_sod_rows(xyz, fixed, w, rules);
+    corners();
+    if(scheme != Relaxation_scheme::UNIFORM)
+      compute_cotangents(xyz);
+    // two passes over independent rows (parallel): the twins in every ring and the length of
+    // every row, then the rows
+    parallel_for_blocks(n, [&](std::size_t first, std::size_t last) {
+      std::vector<std::pair<Index, Index> > sorted;   // long rings only
+      for(std::size_t i = first; i < last; ++i)
+      {
+        rules[i] = match_ring(i, fixed, sorted);
+        w.offsets[i + 1] = static_cast<Index>(ring_row_length(i, rules[i]));
+      }
+    });
+    for(std::size_t i = 0; i < n; ++i)
+      w.offsets[i + 1] += w.offsets[i];
+    w.columns.resize(w.offsets[n]);
+    w.values.resize(w.offsets[n]);
+    parallel_for_blocks(n, [&](std::size_t first, std::size_t last) {
+      for(std::size_t i = first; i < last; ++i)
+      {
+        Index* col = w.columns.data() + w.offsets[i];
+        double* val = w.values.data() + w.offsets[i];
+        if(rules[i] == Relaxation_row_rule::FIXED)
+        {
+          *col = static_cast<Index>(i);
+          *val = 1.;
+        }
+        else if(rules[i] == Relaxation_row_rule::BORDER)
+          border_weights(scheme, i, xyz, ring_border_columns(i, col), col, val);
+        else if(scheme == Relaxation_scheme::UNIFORM)
+          uniform_ring_row(i, col, val);
+        else
+          rules[i] = curvature_ring_row(i, col, val);
+      }
+    });
   }
 
 private:
+  void halfedges()
+  {
+    if(!m_has_halfedges)
+      m_mesh.build(m_n, *m_triangles, false);
+    m_has_halfedges = true;
+  }
+
+  // ---- the 1-ring schemes on corners ---------------------------------------------------
+  // Vertex i's corners are its face halfedges i -> a (m_out[k], m_out_target[k] = a, with the
+  // vertex before, m_out_apex[k] = b: the face holds b -> i -> a), in face order. The twin of
+  // i -> a is the corner m of i whose face holds a -> i (m_out_apex[m] = a): both faces' angles
+  // opposite the edge give its cotangent weight. The rows list the neighbours in the order of
+  // Triangle_halfedges (the face halfedges, then the border ones): the same weights as a walk
+  // on the halfedges, without building twins for the whole mesh (a third of the time of a
+  // one-shot relaxation was that build).
+  void corners()
+  {
+    if(m_has_corners)
+      return;
+    list_face_halfedges_by_source(m_n, *m_triangles, true, m_ring_offsets, m_out, m_out_target, m_out_apex);
+    m_corner_twin.resize(m_out.size());
+    m_apex_matched.resize(m_out.size());
+    m_has_corners = true;
+  }
+
+  // Pairs the corners of vertex i (m_corner_twin, m_apex_matched; first come, first served
+  // where a directed edge repeats) and returns FIXED, BORDER or SCHEME. Rings longer than 32
+  // corners are searched through a sorted copy (`sorted`, scratch), so that a vertex of valence
+  // D costs D log D, not D^2.
+  Relaxation_row_rule match_ring(std::size_t i, const unsigned char* fixed, std::vector<std::pair<Index, Index> >& sorted)
+  {
+    const Index b = m_ring_offsets[i], e = m_ring_offsets[i + 1];
+    if(b == e || (fixed != nullptr && fixed[i]))
+      return Relaxation_row_rule::FIXED;
+    for(Index m = b; m < e; ++m)
+      m_apex_matched[m] = 0;
+    const bool long_ring = e - b > 32;
+    if(long_ring)
+    {
+      sorted.clear();
+      for(Index m = b; m < e; ++m)
+        sorted.emplace_back(m_out_apex[m], m);
+      std::sort(sorted.begin(), sorted.end());
+    }
+    bool border = false;
+    for(Index k = b; k < e; ++k)
+    {
+      const Index a = m_out_target[k];
+      Index twin = invalid_index;
+      if(long_ring)
+      {
+        for(auto it = std::lower_bound(sorted.begin(), sorted.end(), std::make_pair(a, Index(0)));
+            it != sorted.end() && it->first == a; ++it)
+          if(!m_apex_matched[it->second]) { twin = it->second; break; }
+      }
+      else
+        for(Index m = b; m < e; ++m)
+          if(m_out_apex[m] == a && !m_apex_matched[m]) { twin = m; break; }
+      m_corner_twin[k] = twin;
+      if(twin == invalid_index)
+        border = true;
+      else
+        m_apex_matched[twin] = 1;
+    }
+    for(Index m = b; m < e && !border; ++m)
+      border = !m_apex_matched[m];
+    return border ? Relaxation_row_rule::BORDER : Relaxation_row_rule::SCHEME;
+  }
+
+  std::size_t ring_row_length(std::size_t i, Relaxation_row_rule rule) const
+  {
+    if(rule == Relaxation_row_rule::FIXED)
+      return 1;
+    const Index b = m_ring_offsets[i], e = m_ring_offsets[i + 1];
+    if(rule != Relaxation_row_rule::BORDER)
+      return e - b;
+    std::size_t count = 0;
+    for(Index k = b; k < e; ++k)
+      count += (m_corner_twin[k] == invalid_index ? 1 : 0) + (m_apex_matched[k] ? 0 : 1);
+    return count;
+  }
+
+  // the border neighbours of i: targets of corners without a twin, then apexes of corners
+  // that are nobody's twin (the border halfedges out of i, in Triangle_halfedges' order)
+  std::size_t ring_border_columns(std::size_t i, Index* col) const
+  {
+    const Index b = m_ring_offsets[i], e = m_ring_offsets[i + 1];
+    std::size_t count = 0;
+    for(Index k = b; k < e; ++k)
+      if(m_corner_twin[k] == invalid_index)
+        col[count++] = m_out_target[k];
+    for(Index m = b; m < e; ++m)
+      if(!m_apex_matched[m])
+        col[count++] = m_out_apex[m];
+    return count;
+  }
+
+  void uniform_ring_row(std::size_t i, Index* col, double* val) const
+  {
+    const Index b = m_ring_offsets[i], e = m_ring_offsets[i + 1];
+    const double v = 1. / double(e - b);
+    for(Index k = b; k < e; ++k)
+    {
+      *col++ = m_out_target[k];
+      *val++ = v;
+    }
+  }
+
+  Relaxation_row_rule curvature_ring_row(std::size_t i, Index* col, double* val) const
+  {
+    const Index b = m_ring_offsets[i], e = m_ring_offsets[i + 1];
+    for(Index k = b; k < e; ++k)
+    {
+      const Index into_i = m_out[m_corner_twin[k]];   // i -> b in the twin's face: its previous halfedge is a -> i
+      col[k - b] = m_out_target[k];
+      val[k - b] = m_cotangent[m_out[k]] + m_cotangent[into_i % 3 == 0 ? into_i + 2 : into_i - 1];
+    }
+    return normalised_curvature_row(e - b, val);
+  }
+
   // SOD rows have lengths known only once assembled: one sequential pass into an upper bound
   void build_sod_rows(const double* xyz, const unsigned char* fixed, Sparse_weights& w, std::vector<Relaxation_row_rule>& rules)
   {
-    const std::size_t n = m_mesh.n;
+    const std::size_t n = m_n;
     compute_hinge_coefficients(xyz);
     m_local_position.assign(n, invalid_index);
     const std::size_t capacity = 3 * m_mesh.out.size() + n;
@@ -217,8 +352,9 @@ private:
   void compute_cotangents(const double* xyz)
   {
     const std::vector<Index>& tri = *m_triangles;
-    m_cotangent.resize(3 * m_mesh.nf);
-    parallel_for_blocks(m_mesh.nf, [&](std::size_t first, std::size_t last) {
+    const std::size_t nf = tri.size() / 3;
+    m_cotangent.resize(3 * nf);
+    parallel_for_blocks(nf, [&](std::size_t first, std::size_t last) {
       for(std::size_t f = first; f < last; ++f)
       {
         const double* p[3] = {xyz + 3 * std::size_t(tri[3 * f]), xyz + 3 * std::size_t(tri[3 * f + 1]),
@@ -248,30 +384,26 @@ private:
     return (m_mesh.has_face(h) ? m_cotangent[h] : 0.) + (m_mesh.has_face(t) ? m_cotangent[t] : 0.);
   }
 
-  std::size_t uniform_row(std::size_t i, Index* col, double* val) const
-  {
-    const Index b = m_mesh.out_offsets[i], e = m_mesh.out_offsets[i + 1];
-    const double v = 1. / double(e - b);
-    for(Index k = b; k < e; ++k)
-    {
-      *col++ = m_mesh.out_target[k];
-      *val++ = v;
-    }
-    return e - b;
-  }
-
   // writes degree(i) entries
   Relaxation_row_rule curvature_row(std::size_t i, Index* col, double* val) const
   {
     const Index b = m_mesh.out_offsets[i], e = m_mesh.out_offsets[i + 1];
-    const std::size_t d = e - b;
+    for(Index k = b; k < e; ++k)
+    {
+      col[k - b] = m_mesh.out_target[k];
+      val[k - b] = edge_cotangent_weight(m_mesh.out[k]);
+    }
+    return normalised_curvature_row(e - b, val);
+  }
+
+  // the cotangent weights val[0..d) of a row normalised (Eq. 2): as they are while the negative
+  // mass is at most half the positive one, else without the negative weights, else uniform
+  static Relaxation_row_rule normalised_curvature_row(std::size_t d, double* val)
+  {
     double positive = 0., negative = 0.;
     for(std::size_t k = 0; k < d; ++k)
     {
-      const double x = edge_cotangent_weight(m_mesh.out[b + k]);
-      if(x > 0.) positive += x; else negative -= x;
-      col[k] = m_mesh.out_target[b + k];
-      val[k] = x;
+      if(val[k] > 0.) positive += val[k]; else negative -= val[k];
     }
     if(positive > 0. && negative <= max_negative_ratio * positive)
     {
@@ -287,7 +419,8 @@ private:
         val[k] = val[k] > 0. ? val[k] * inv : 0.;
       return Relaxation_row_rule::CLAMPED_CURVATURE;
     }
-    uniform_row(i, col, val);
+    for(std::size_t k = 0; k < d; ++k)
+      val[k] = 1. / double(d);
     return Relaxation_row_rule::UNIFORM_FALLBACK;
   }
 
@@ -298,27 +431,33 @@ private:
   std::size_t border_row(Relaxation_scheme scheme, std::size_t i, const double* xyz, Index* col, double* val) const
   {
     std::size_t count = 0;
+    for(Index k = m_mesh.out_offsets[i]; k < m_mesh.out_offsets[i + 1]; ++k)
+      if(m_mesh.is_border_edge(m_mesh.out[k]))
+        col[count++] = m_mesh.out_target[k];
+    border_weights(scheme, i, xyz, count, col, val);
+    return count;
+  }
+
+  // the weights of border row i over its `count` border neighbours col[0..count)
+  static void border_weights(Relaxation_scheme scheme, std::size_t i, const double* xyz, std::size_t count,
+                             const Index* col, double* val)
+  {
     double total = 0.;
     bool uniform = (scheme == Relaxation_scheme::UNIFORM);
-    for(Index k = m_mesh.out_offsets[i]; k < m_mesh.out_offsets[i + 1]; ++k)
+    for(std::size_t k = 0; k < count; ++k)
     {
-      if(!m_mesh.is_border_edge(m_mesh.out[k]))
-        continue;
-      const Index j = m_mesh.out_target[k];
+      const std::size_t j = col[k];
       double l = 0.;
       for(int c = 0; c < 3; ++c)
         l += (xyz[3 * j + c] - xyz[3 * i + c]) * (xyz[3 * j + c] - xyz[3 * i + c]);
       l = std::sqrt(l);
       if(!(l > 0.))
         uniform = true;
-      col[count] = j;
-      val[count] = uniform ? 1. : 1. / l;
-      total += val[count];
-      ++count;
+      val[k] = uniform ? 1. : 1. / l;
+      total += val[k];
     }
     for(std::size_t k = 0; k < count; ++k)
       val[k] = uniform ? 1. / double(count) : val[k] / total;
-    return count;
   }
 
   // ---- second-order differences (see second_order_difference_coefficients()) ----------
@@ -404,7 +543,12 @@ private:
   }
 
   const std::vector<Index>* m_triangles = nullptr;
+  std::size_t m_n = 0;
+  bool m_has_halfedges = false, m_has_corners = false;
   Triangle_halfedges m_mesh;
+  // the corners around every vertex (corners()) and their pairing (match_ring())
+  std::vector<Index> m_ring_offsets, m_out, m_out_target, m_out_apex, m_corner_twin;
+  std::vector<unsigned char> m_apex_matched;
   std::vector<double> m_cotangent;
   std::vector<std::array<double, 4> > m_hinge;
   std::vector<unsigned char> m_hinge_valid;

@@ -1,0 +1,124 @@
+// Copyright (c) 2026  The Surface_mesh_multiresolution authors. All rights reserved.
+//
+// This file is part of Surface_mesh_multiresolution, an add-on package for CGAL.
+//
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s)     : The Surface_mesh_multiresolution authors
+#ifndef CGAL_SURFACE_MESH_MULTIRESOLUTION_INTERNAL_LEVEL_WEIGHTS_H
+#define CGAL_SURFACE_MESH_MULTIRESOLUTION_INTERNAL_LEVEL_WEIGHTS_H
+
+#include <CGAL/Surface_mesh_multiresolution/internal/config.h>
+#include <CGAL/Surface_mesh_multiresolution/internal/helpers.h>
+#include <CGAL/Surface_mesh_multiresolution/internal/level_transform.h>
+#include <CGAL/Surface_mesh_multiresolution/internal/relaxation_weights.h>
+#include <CGAL/Surface_mesh_multiresolution/internal/Sparse_weights.h>
+#include <CGAL/Surface_mesh_multiresolution/Pyramid.h>
+
+#include <cmath>
+#include <vector>
+
+namespace CGAL {
+namespace Surface_mesh_multiresolution {
+namespace internal {
+
+// The weights lambda^k of the levels of a pyramid. A pyramid keeps the positions its weights
+// were computed from (Pyramid::weight_positions(): the input's, as every M_k is a subset of
+// the input's vertices), not the weights: those of level k are computed again from the
+// positions of M_k's vertices and M_k's face array, by the code and on the values that made
+// them in decompose() (the positions scaled as there: geometry_scale_exponent() of all of
+// them), so they are the same bit for bit and exact reconstruction holds. The weights were
+// three quarters of a pyramid's memory and file. Pyramids read from files of format 1 and 2
+// carry their weights (Pyramid_level::weights) and have no positions.
+class Level_weights
+{
+public:
+  template <typename TriangleMesh>
+  explicit Level_weights(const Pyramid<TriangleMesh>& pyr)
+    : m_positions(pyr.weight_positions()), m_scheme(pyr.relaxation_scheme()),
+      m_exponent(geometry_scale_exponent(m_positions.data(), m_positions.size()))
+  {}
+
+  // whether of() needs the level's face array (false: the weights are stored)
+  bool computed() const { return !m_positions.empty(); }
+
+  // the weights of level `lev`, whose face array is F (rows of M_k; unused when stored);
+  // valid until the next call
+  const Sparse_weights& of(const Pyramid_level& lev, const std::vector<Index>& F)
+  {
+    if(!computed())
+      return lev.weights;
+    const std::size_t n = lev.number_of_rows();
+    m_xyz.resize(3 * n);
+    parallel_for_blocks(n, [&](std::size_t first, std::size_t last) {
+      for(std::size_t r = first; r < last; ++r)
+        for(std::size_t c = 0; c < 3; ++c)
+        {
+          const double x = m_positions[3 * std::size_t(lev.vertices[r]) + c];
+          m_xyz[3 * r + c] = m_exponent == 0 ? x : std::scalbn(x, -m_exponent);
+        }
+    });
+    m_builder.set_connectivity(n, F);
+    m_builder.build(m_scheme, m_xyz.data(), nullptr, m_weights, m_rules);
+    return m_weights;
+  }
+
+private:
+  const std::vector<double>& m_positions;
+  Relaxation_scheme m_scheme;
+  int m_exponent;
+  std::vector<double> m_xyz;
+  Relaxation_weight_builder m_builder;
+  Sparse_weights m_weights;
+  std::vector<Relaxation_row_rule> m_rules;
+};
+
+// The analysis (Eq. 5) of the channels `channels` at every level from their values x[c] on M_0
+// (rows = input numbers; x[c] may be empty for the other channels). The values of M_k are
+// those of its vertices (every level is a subset of the input's vertices), so the levels are
+// taken from the coarsest, their face arrays rebuilt on the way for their weights.
+// done(k, c, details, corrections) receives the result of each level and channel.
+template <typename TriangleMesh, typename Done>
+void analyse_levels(const Pyramid<TriangleMesh>& pyr, const std::vector<std::size_t>& channels,
+                    const std::vector<std::vector<double> >& x, const Done& done)
+{
+  Level_weights weights(pyr);
+  std::vector<Index> F;
+  if(weights.computed())
+    F = pyr.coarse_faces();
+  std::vector<double> f, details;
+  Corrections corrections;
+  for(std::size_t k = pyr.number_of_levels(); k-- > 0; )
+  {
+    const Pyramid_level& level = pyr.levels()[k];
+    if(weights.computed())
+      expand_faces(level, F);
+    const Sparse_weights& w = weights.of(level, F);
+    for(std::size_t c : channels)
+    {
+      const std::size_t dim = pyr.dimensions()[c];
+      f.resize(level.vertices.size() * dim);
+      for(std::size_t r = 0; r < level.vertices.size(); ++r)
+        copy_values(x[c].data() + std::size_t(level.vertices[r]) * dim, dim, f.data() + r * dim);
+      analyse_level(level, w, dim, f, details, corrections);
+      done(k, c, details, corrections);
+    }
+  }
+}
+
+// the values x (dim per input vertex) of the vertices of M_K
+template <typename TriangleMesh>
+std::vector<double> coarsest_values(const Pyramid<TriangleMesh>& pyr, std::size_t dim, const std::vector<double>& x)
+{
+  const std::vector<Index>& vertices = pyr.vertices(pyr.number_of_levels());
+  std::vector<double> f(vertices.size() * dim);
+  for(std::size_t r = 0; r < vertices.size(); ++r)
+    copy_values(x.data() + std::size_t(vertices[r]) * dim, dim, f.data() + r * dim);
+  return f;
+}
+
+} // namespace internal
+} // namespace Surface_mesh_multiresolution
+} // namespace CGAL
+
+#endif // CGAL_SURFACE_MESH_MULTIRESOLUTION_INTERNAL_LEVEL_WEIGHTS_H
