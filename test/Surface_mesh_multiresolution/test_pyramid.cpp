@@ -540,6 +540,48 @@ TEST_CASE("pyramid files: what analysis gives is derived at load, edited details
   CHECK(bytes_of(enhanced).size() > derived_size);
 }
 
+TEST_CASE("stored weights are the relaxation operators of the levels and change no reconstruction", "[pyramid][weights]")
+{
+  const Mesh m = smr_test::planar_grid<Mesh>(14, 0.3);   // borders and interior vertices
+  for(SMR::Relaxation_scheme scheme : {SMR::Relaxation_scheme::CURVATURE, SMR::Relaxation_scheme::UNIFORM,
+                                       SMR::Relaxation_scheme::SECOND_ORDER_DIFFERENCE})
+  {
+    SMR::Pyramid<Mesh> pyr = SMR::decompose(m, SMR::parameters::relaxation_scheme(scheme));
+    REQUIRE(pyr.number_of_levels() > 3);
+    std::vector<Mesh> before(pyr.number_of_levels() + 1);
+    for(std::size_t k = 0; k <= pyr.number_of_levels(); ++k)
+      SMR::reconstruct(pyr, before[k], SMR::parameters::level(k));
+    std::stringstream file_before(std::ios::in | std::ios::out | std::ios::binary);
+    REQUIRE(SMR::IO::write_pyramid(file_before, pyr));
+
+    SMR::store_weights(pyr);
+    CHECK(SMR::internal::check_pyramid(pyr).empty());
+    for(std::size_t k = 0; k < pyr.number_of_levels(); ++k)
+    {
+      // lambda^k is the relaxation operator of M_k (Eq. 2, Eq. 1 or the uniform Laplacian)
+      const auto R = SMR::relaxation_operator(before[k], SMR::parameters::relaxation_scheme(scheme));
+      const auto& w = pyr.levels()[k].weights;
+      CHECK(w.offsets == R.row_offsets());
+      CHECK(w.columns == R.column_indices());
+      CHECK(w.values == R.weights());
+    }
+    for(std::size_t k = 0; k <= pyr.number_of_levels(); ++k)
+    {
+      Mesh after;
+      SMR::reconstruct(pyr, after, SMR::parameters::level(k));
+      CHECK(smr_test::positions_in_order(after) == smr_test::positions_in_order(before[k]));
+    }
+    std::stringstream file_after(std::ios::in | std::ios::out | std::ios::binary);
+    REQUIRE(SMR::IO::write_pyramid(file_after, pyr));
+    CHECK(file_after.str() == file_before.str());   // not saved
+    SMR::store_weights(pyr, false);
+    CHECK(pyr.levels()[0].weights.values.empty());
+    Mesh again;
+    SMR::reconstruct(pyr, again);
+    CHECK(smr_test::positions_in_order(again) == smr_test::positions_in_order(m));
+  }
+}
+
 TEST_CASE("the cost adapter gives the Garland-Heckbert cost of an independent quadric evaluation", "[pyramid][cost]")
 {
   Mesh m = smr_test::icosphere<Mesh>(2);

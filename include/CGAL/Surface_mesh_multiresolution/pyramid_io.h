@@ -303,7 +303,9 @@ void write_payload_v3(const Pyramid<TriangleMesh>& pyr, Byte_writer& w)
 {
   const std::size_t nc = pyr.number_of_channels();
   Values_workspace ws;
-  reconstruct_values(pyr, 0, ws);               // exact; ws.faces: the face array of M_0
+  reconstruct_values(pyr, 0, ws);               // exact; ws.faces: the face array of M_0, unless weights are stored
+  if(ws.faces.empty())
+    reconstruct_faces(pyr, 0, ws.faces);
   std::vector<std::size_t> all(nc);
   for(std::size_t c = 0; c < nc; ++c) all[c] = c;
   std::vector<unsigned char> analysed(nc, 1);

@@ -267,7 +267,7 @@ void reconstruct_arrays(const Pyramid<TriangleMesh>& pyr, std::size_t level,
   reconstruct_values(pyr, level, ws);
   values.swap(ws.values);
   F.clear();
-  if(faces && !pyr.weight_positions().empty())
+  if(faces && !ws.faces.empty())
     F.swap(ws.faces);
   else if(faces)
     reconstruct_faces(pyr, level, F);
@@ -413,6 +413,43 @@ void reconstruct(const Pyramid<TriangleMesh>& pyr, OutputMesh& out, const NamedP
                                 values.swap(ws.values);
                               },
                               out, np, keep_connectivity, keep_connectivity ? pyr.number_of_faces(level) : 0);
+}
+
+/*!
+ * \ingroup PkgSurfaceMeshMultiresolutionRef
+ * computes the relaxation weights \f$ \lambda^k \f$ of every level of `pyr` and keeps them in
+ * it (`store` true), or frees them (`store` false).
+ *
+ * A pyramid holds the positions its weights are computed from, not the weights, which would
+ * take most of its memory (about 12 bytes per neighbour of every vertex of every level):
+ * every reconstruction computes them again, level by level, the same bit for bit, and that
+ * is most of its time. A program that reconstructs one pyramid many times (filters tried
+ * interactively, several levels of detail, adaptive reconstructions) stores them once;
+ * reconstructions then cost what the synthesis costs (the dragon, 437k vertices: about 5
+ * times faster, for about 190 MB). `IO::write_pyramid()` does not save them.
+ */
+template <typename TriangleMesh>
+void store_weights(Pyramid<TriangleMesh>& pyr, bool store = true)
+{
+  std::vector<internal::Pyramid_level>& levels = internal::Pyramid_access::levels(pyr);
+  if(pyr.weight_positions().empty())
+    return;                                   // a pyramid of a format 1 or 2 file: its levels hold their weights
+  if(!store)
+  {
+    for(internal::Pyramid_level& lev : levels)
+      lev.weights = internal::Sparse_weights();
+    return;
+  }
+  internal::Level_weights weights(pyr);
+  if(!weights.computed())
+    return;
+  std::vector<internal::Index> F = pyr.coarse_faces();
+  for(std::size_t k = levels.size(); k-- > 0; )
+  {
+    internal::expand_faces(levels[k], F);
+    if(!weights.stored(levels[k]))
+      levels[k].weights = weights.of(levels[k], F);
+  }
 }
 
 } // namespace Surface_mesh_multiresolution

@@ -30,10 +30,9 @@ namespace internal {
 //  (2) rows: n_0 is the number of input vertices; odd_rows of level k are increasing and
 //      below n_k; even_rows are the other rows, increasing; n_{k+1} = |even_rows_k|;
 //      vertices(0) = 0..n_0-1 and vertices(k+1)[j] = vertices(k)[even_rows_k[j]];
-//  (3) weights: either the pyramid has weight positions (3 finite doubles per input vertex)
-//      and no level stores weights, or it has none and every level stores a CSR over n_k
-//      rows (offsets from 0, non-decreasing, ending at the number of entries), columns below
-//      n_k, finite values;
+//  (3) weights: the pyramid has weight positions (3 finite doubles per input vertex), or
+//      every level stores its weights; stored weights are a CSR over n_k rows (offsets from 0,
+//      non-decreasing, ending at the number of entries), columns below n_k, finite values;
 //  (4) details: n_k * dimension finite doubles per channel; corrections at increasing
 //      positions below n_k * dimension, finite; coarsest values: n_K * dimension finite doubles;
 //  (5) collapse targets: one per odd row, an even row of M_k, no two the same;
@@ -119,17 +118,17 @@ std::string derive_rows(Pyramid<TriangleMesh>& pyr)
 }
 
 // (3), (4), (5) for one level
-inline std::string check_level_records(const Pyramid_level& lev, const std::vector<std::size_t>& dims, bool weights_stored)
+inline std::string check_level_records(const Pyramid_level& lev, const std::vector<std::size_t>& dims, bool weights_required)
 {
   const std::size_t n = lev.number_of_rows();
   const Sparse_weights& w = lev.weights;
-  if(!weights_stored && (w.offsets.size() > 1 || !w.columns.empty() || !w.values.empty()))
-    return "weights stored in a pyramid that computes them";
-  if(weights_stored && (w.offsets.size() != n + 1 || w.offsets[0] != 0 || w.offsets[n] != w.columns.size() || w.columns.size() != w.values.size()))
+  const bool stored = w.offsets.size() > 1 || !w.columns.empty() || !w.values.empty();
+  if((weights_required || stored)
+     && (w.offsets.size() != n + 1 || w.offsets[0] != 0 || w.offsets[n] != w.columns.size() || w.columns.size() != w.values.size()))
     return "weights of the wrong size";
-  for(std::size_t i = 0; weights_stored && i < n; ++i)
+  for(std::size_t i = 0; stored && i < n; ++i)
     if(w.offsets[i] > w.offsets[i + 1]) return "weight offsets decrease";
-  if(weights_stored && (!all_below(w.columns, n) || !all_finite(w.values)))
+  if(stored && (!all_below(w.columns, n) || !all_finite(w.values)))
     return "a weight refers to a vertex outside the level or is not finite";
   if(lev.details.size() != dims.size() || lev.corrections.size() != dims.size())
     return "details of the wrong number of channels";
@@ -238,8 +237,8 @@ std::string check_pyramid_records(const Pyramid<TriangleMesh>& pyr)
     if(d == 0 || d > 4096) return "a channel dimension is 0 or above 4096";
   const std::size_t K = pyr.number_of_levels();
   std::size_t n = pyr.number_of_input_vertices();
-  const bool weights_stored = pyr.weight_positions().empty();
-  if(!weights_stored && (pyr.weight_positions().size() != 3 * n || !all_finite(pyr.weight_positions())))
+  const bool weights_required = pyr.weight_positions().empty();
+  if(!weights_required && (pyr.weight_positions().size() != 3 * n || !all_finite(pyr.weight_positions())))
     return "weight positions of the wrong size or not finite";
   for(std::size_t k = 0; k < K; ++k)
   {
@@ -247,7 +246,7 @@ std::string check_pyramid_records(const Pyramid<TriangleMesh>& pyr)
     if(lev.number_of_rows() != n || !strictly_increasing_below(lev.odd_rows, n)
        || lev.even_rows.size() + lev.odd_rows.size() != n || !strictly_increasing_below(lev.even_rows, n))
       return "level " + std::to_string(k) + ": rows inconsistent with the level above";
-    const std::string why = check_level_records(lev, dims, weights_stored);
+    const std::string why = check_level_records(lev, dims, weights_required);
     if(!why.empty())
       return "level " + std::to_string(k) + ": " + why;
     n = lev.even_rows.size();

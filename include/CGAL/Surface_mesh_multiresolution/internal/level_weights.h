@@ -28,8 +28,9 @@ namespace internal {
 // positions of M_k's vertices and M_k's face array, by the code and on the values that made
 // them in decompose() (the positions scaled as there: geometry_scale_exponent() of all of
 // them), so they are the same bit for bit and exact reconstruction holds. The weights were
-// three quarters of a pyramid's memory and file. Pyramids read from files of format 1 and 2
-// carry their weights (Pyramid_level::weights) and have no positions.
+// three quarters of a pyramid's memory and file. Levels may hold their weights
+// (Pyramid_level::weights): after store_weights(), and in pyramids read from files of format
+// 1 and 2, which have no positions.
 class Level_weights
 {
 public:
@@ -37,16 +38,25 @@ public:
   explicit Level_weights(const Pyramid<TriangleMesh>& pyr)
     : m_positions(pyr.weight_positions()), m_scheme(pyr.relaxation_scheme()),
       m_exponent(geometry_scale_exponent(m_positions.data(), m_positions.size()))
-  {}
+  {
+    for(const Pyramid_level& lev : pyr.levels())
+      m_all_stored = m_all_stored && stored(lev);
+  }
 
-  // whether of() needs the level's face array (false: the weights are stored)
-  bool computed() const { return !m_positions.empty(); }
+  // whether the level holds its weights (store_weights(), or a file of format 1 or 2)
+  bool stored(const Pyramid_level& lev) const
+  {
+    return m_positions.empty() || lev.weights.offsets.size() == lev.number_of_rows() + 1;
+  }
 
-  // the weights of level `lev`, whose face array is F (rows of M_k; unused when stored);
-  // valid until the next call
+  // whether of() needs the face arrays of the levels (false: every level holds its weights)
+  bool computed() const { return !m_all_stored; }
+
+  // the weights of level `lev`, whose face array is F (rows of M_k; not read when the level
+  // holds its weights); valid until the next call
   const Sparse_weights& of(const Pyramid_level& lev, const std::vector<Index>& F)
   {
-    if(!computed())
+    if(stored(lev))
       return lev.weights;
     const std::size_t n = lev.number_of_rows();
     m_xyz.resize(3 * n);
@@ -67,6 +77,7 @@ private:
   const std::vector<double>& m_positions;
   Relaxation_scheme m_scheme;
   int m_exponent;
+  bool m_all_stored = true;
   std::vector<double> m_xyz;
   Relaxation_weight_builder m_builder;
   Sparse_weights m_weights;

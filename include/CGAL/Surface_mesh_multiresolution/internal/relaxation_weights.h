@@ -21,6 +21,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <stdexcept>
 #include <vector>
 
@@ -181,44 +182,86 @@ private:
   // Pairs the corners of vertex i (m_corner_twin, m_apex_matched; first come, first served
   // where a directed edge repeats) and returns FIXED, BORDER or SCHEME. Rings longer than 32
   // corners are searched through a sorted copy (`sorted`, scratch), so that a vertex of valence
-  // D costs D log D, not D^2.
+  // D costs D log D, not D^2. (Local pointers and a bit mask: stores through the byte flags
+  // would otherwise make the compiler reload every array's address in the inner loop.)
   Relaxation_row_rule match_ring(std::size_t i, const unsigned char* fixed, std::vector<std::pair<Index, Index> >& sorted)
   {
     const Index b = m_ring_offsets[i], e = m_ring_offsets[i + 1];
     if(b == e || (fixed != nullptr && fixed[i]))
       return Relaxation_row_rule::FIXED;
-    for(Index m = b; m < e; ++m)
-      m_apex_matched[m] = 0;
-    const bool long_ring = e - b > 32;
-    if(long_ring)
+    const Index* target = m_out_target.data();
+    const Index* apex = m_out_apex.data();
+    Index* twin_of = m_corner_twin.data();
+    unsigned char* matched = m_apex_matched.data();
+    bool border = false;
+    if(e - b <= 32)
+    {
+      // the twin of corner k is the corner whose apex is k's target: unique in a halfedge
+      // mesh, found without branches; a second claim on a corner (a directed edge listed
+      // twice) falls back to the search below, first come, first served
+      std::uint32_t used = 0;
+      bool repeated = false;
+      for(Index k = b; k < e; ++k)
+      {
+        const Index a = target[k];
+        Index twin = invalid_index;
+        for(Index m = e; m-- > b; )
+          twin = apex[m] == a ? m : twin;
+        twin_of[k] = twin;
+        if(twin == invalid_index)
+          border = true;
+        else
+        {
+          repeated = repeated || ((used >> (twin - b)) & 1u);
+          used |= std::uint32_t(1) << (twin - b);
+        }
+      }
+      if(repeated)
+      {
+        used = 0;
+        border = false;
+        for(Index k = b; k < e; ++k)
+        {
+          const Index a = target[k];
+          Index twin = invalid_index;
+          for(Index m = b; m < e; ++m)
+            if(apex[m] == a && !((used >> (m - b)) & 1u)) { twin = m; break; }
+          twin_of[k] = twin;
+          if(twin == invalid_index)
+            border = true;
+          else
+            used |= std::uint32_t(1) << (twin - b);
+        }
+      }
+      for(Index m = b; m < e; ++m)
+        matched[m] = static_cast<unsigned char>((used >> (m - b)) & 1u);
+      border = border || used != (e - b == 32 ? ~std::uint32_t(0) : (std::uint32_t(1) << (e - b)) - 1);
+    }
+    else
     {
       sorted.clear();
       for(Index m = b; m < e; ++m)
-        sorted.emplace_back(m_out_apex[m], m);
-      std::sort(sorted.begin(), sorted.end());
-    }
-    bool border = false;
-    for(Index k = b; k < e; ++k)
-    {
-      const Index a = m_out_target[k];
-      Index twin = invalid_index;
-      if(long_ring)
       {
+        sorted.emplace_back(apex[m], m);
+        matched[m] = 0;
+      }
+      std::sort(sorted.begin(), sorted.end());
+      for(Index k = b; k < e; ++k)
+      {
+        const Index a = target[k];
+        Index twin = invalid_index;
         for(auto it = std::lower_bound(sorted.begin(), sorted.end(), std::make_pair(a, Index(0)));
             it != sorted.end() && it->first == a; ++it)
-          if(!m_apex_matched[it->second]) { twin = it->second; break; }
+          if(!matched[it->second]) { twin = it->second; break; }
+        twin_of[k] = twin;
+        if(twin == invalid_index)
+          border = true;
+        else
+          matched[twin] = 1;
       }
-      else
-        for(Index m = b; m < e; ++m)
-          if(m_out_apex[m] == a && !m_apex_matched[m]) { twin = m; break; }
-      m_corner_twin[k] = twin;
-      if(twin == invalid_index)
-        border = true;
-      else
-        m_apex_matched[twin] = 1;
+      for(Index m = b; m < e && !border; ++m)
+        border = !matched[m];
     }
-    for(Index m = b; m < e && !border; ++m)
-      border = !m_apex_matched[m];
     return border ? Relaxation_row_rule::BORDER : Relaxation_row_rule::SCHEME;
   }
 
