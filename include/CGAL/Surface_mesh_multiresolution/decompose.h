@@ -98,9 +98,8 @@ private:
     record_rows_and_targets(level);
     analyse_channels(level);
     collapse_face_array(level);
+    m_builder = Relaxation_weight_builder();   // a level's halfedges follow its size
     move_to_next_level(level);
-    m_builder = Relaxation_weight_builder();   // a level's halfedges and cotangents follow its size
-    m_weights = Sparse_weights();
     m_visitor.on_level_finished(k, level.odd_rows.size());
     return true;
   }
@@ -118,6 +117,8 @@ private:
     select_collapses(m_builder.connectivity(), xyz().data(), [&](Index o, Index e) { return m_cost.cost(o, e); }, budget,
                      m_on_border, m_locked, m_accepted);
     std::sort(m_accepted.begin(), m_accepted.end(), [](const Collapse& a, const Collapse& b) { return a.o < b.o; });
+    if(m_scheme != Relaxation_scheme::SECOND_ORDER_DIFFERENCE)   // SOD's hinges read the twins
+      m_builder.keep_outgoing_lists_only();
   }
 
   void record_rows_and_targets(Pyramid_level& level)
@@ -142,11 +143,13 @@ private:
     // the weights are not kept: reconstruct() computes them again from the same positions
     // (Level_weights), which costs less than holding them
     m_builder.build(m_scheme, xyz().data(), nullptr, m_weights, m_rules);
+    m_builder.release_weight_data();       // before the analysis' arrays: the peak memory is level 0's
     const std::size_t nc = m_values.size();
     level.details.resize(nc);
     level.corrections.resize(nc);
     for(std::size_t c = 0; c < nc; ++c)
       analyse_level(level, m_weights, m_pyr.dimensions()[c], m_values[c], level.details[c], level.corrections[c]);
+    m_weights = Sparse_weights();
   }
 
   void collapse_face_array(Pyramid_level& level);
@@ -214,13 +217,18 @@ void Decomposition<TriangleMesh, CostModel, Visitor>::collapse_face_array(Pyrami
   const Triangle_halfedges& th = m_builder.connectivity();
   const std::size_t na = m_accepted.size();
   std::vector<Index> first_renamed(na + 1, 0), first_removed(na + 1, 0);
-  auto holds_target = [&](Index q, Index e) { return th.out_target[q] == e || th.out_apex[q] == e; };
+  // whether the face of o's outgoing halfedge out[q] holds e (the corners other than o's,
+  // which no other collapse renames)
+  auto holds_target = [&](Index q, Index e) {
+    const Index h = th.out[q];
+    return m_faces[h % 3 == 2 ? h - 2 : h + 1] == e || m_faces[h % 3 == 0 ? h + 2 : h - 1] == e;
+  };
   parallel_for_blocks(na, [&](std::size_t first, std::size_t last) {
     for(std::size_t i = first; i < last; ++i)
     {
       const Collapse& c = m_accepted[i];
       for(Index q = th.out_offsets[c.o]; q < th.out_offsets[c.o + 1]; ++q)
-        if(th.out_apex[q] != invalid_index)                // a face (o, a, b)
+        if(th.has_face(th.out[q]))                         // a face (o, a, b)
           ++(holds_target(q, c.e) ? first_removed : first_renamed)[i + 1];
     }
   }, 1024);
@@ -236,7 +244,7 @@ void Decomposition<TriangleMesh, CostModel, Visitor>::collapse_face_array(Pyrami
       Index renamed = first_renamed[i], gone = first_removed[i];
       for(Index q = th.out_offsets[c.o]; q < th.out_offsets[c.o + 1]; ++q)
       {
-        if(th.out_apex[q] == invalid_index)              // no face (the same test as the count)
+        if(!th.has_face(th.out[q]))                      // no face (the same test as the count)
           continue;
         const Index g = th.out[q];                         // o -> a in face g / 3, o at corner g % 3
         Index* t = m_faces.data() + 3 * std::size_t(g / 3);
@@ -398,15 +406,18 @@ Pyramid<TriangleMesh> decompose(const TriangleMesh& tm, const NamedParameters& n
   internal::Pyramid_access::set_number_of_input_vertices(pyr, im.number_of_vertices());
   std::vector<std::vector<double> > values
     = internal::read_input_values(im, vpm, gt, maps, internal::Pyramid_access::dimensions(pyr));
-  internal::Pyramid_access::weight_positions(pyr) = values[0];
   Cost_model cost_model(tm, vpm, CGAL::get_initialized_vertex_index_map(tm, np), im, gt,
                         get_parameter(np, CGAL::internal_np::get_cost_policy));
   std::vector<internal::Index> faces;
   faces.swap(im.triangles);
+  auto input_vertices = std::move(im.vertices);
   im = internal::Indexed_mesh<TriangleMesh>();   // not needed any more
   internal::Decomposition<TriangleMesh, Cost_model, Visitor> decomposition(pyr, std::move(values), std::move(faces),
                                                                            cost_model, scheme, visitor);
   decomposition.run(max_levels, min_vertices);
+  // the positions the weights derive from, read again (validated above): no copy of them is
+  // held through the first level, where a decomposition's memory peaks
+  internal::read_coordinates(input_vertices, vpm, gt, internal::Pyramid_access::weight_positions(pyr));
   return pyr;
 }
 

@@ -101,6 +101,25 @@ public:
     return m_mesh;
   }
 
+  // frees all of the halfedges but the vertices' lists of outgoing halfedges (out_offsets,
+  // out), once only those are read: the 1-ring weights and the collapses of the face array
+  // after the selection
+  void keep_outgoing_lists_only()
+  {
+    for(std::vector<Index>* v : {&m_mesh.source, &m_mesh.target, &m_mesh.twin, &m_mesh.out_target, &m_mesh.out_apex})
+      std::vector<Index>().swap(*v);      // (a chain of assignments would keep the capacities)
+  }
+
+  // frees what the weights were computed with (not the halfedges)
+  void release_weight_data()
+  {
+    m_has_corners = false;
+    m_cotangent = std::vector<double>();
+    for(std::vector<Index>* v : {&m_ring_offsets, &m_out, &m_out_target, &m_out_apex, &m_corner_twin})
+      std::vector<Index>().swap(*v);
+    m_apex_matched = std::vector<unsigned char>();
+  }
+
   // xyz: 3 doubles per row; fixed: nullptr or one flag per row (constrained vertices)
   void build(Relaxation_scheme scheme, const double* xyz, const unsigned char* fixed,
              Sparse_weights& w, std::vector<Relaxation_row_rule>& rules)
@@ -162,9 +181,9 @@ private:
   }
 
   // ---- the 1-ring schemes on corners ---------------------------------------------------
-  // Vertex i's corners are its face halfedges i -> a (m_out[k], m_out_target[k] = a, with the
-  // vertex before, m_out_apex[k] = b: the face holds b -> i -> a), in face order. The twin of
-  // i -> a is the corner m of i whose face holds a -> i (m_out_apex[m] = a): both faces' angles
+  // Vertex i's corners are its face halfedges i -> a (m_outp[k], target_of_corner(k) = a, with
+  // the vertex before, apex_of_corner(k) = b: the face holds b -> i -> a), in face order. The
+  // twin of i -> a is the corner m of i whose face holds a -> i (apex_of_corner(m) = a): both faces' angles
   // opposite the edge give its cotangent weight. The rows list the neighbours in the order of
   // Triangle_halfedges (the face halfedges, then the border ones): the same weights as a walk
   // on the halfedges, without building twins for the whole mesh (a third of the time of a
@@ -173,10 +192,46 @@ private:
   {
     if(m_has_corners)
       return;
-    list_face_halfedges_by_source(m_n, *m_triangles, true, m_ring_offsets, m_out, m_out_target, m_out_apex);
-    m_corner_twin.resize(m_out.size());
-    m_apex_matched.resize(m_out.size());
+    if(m_has_halfedges)                   // the halfedges list them (then the border halfedges, skipped)
+    {
+      m_offs = m_mesh.out_offsets.data();
+      m_outp = m_mesh.out.data();
+      m_rows = m_mesh.out.size();
+    }
+    else
+    {
+      list_face_halfedges_by_source(m_n, *m_triangles, false, m_ring_offsets, m_out, m_out_target, m_out_apex);
+      m_out_target = std::vector<Index>();   // read from the faces (target_of_corner())
+      m_offs = m_ring_offsets.data();
+      m_outp = m_out.data();
+      m_rows = m_out.size();
+    }
+    m_h0 = static_cast<Index>(m_triangles->size());
+    m_corner_twin.resize(m_rows);
+    m_apex_matched.resize(m_rows);
     m_has_corners = true;
+  }
+
+  // the vertex after and the vertex before corner k in its face (read from the face array,
+  // whose face of the corner is at hand: no array of targets and apexes to keep)
+  Index target_of_corner(Index k) const
+  {
+    const Index h = m_outp[k];
+    return (*m_triangles)[h % 3 == 2 ? h - 2 : h + 1];
+  }
+  Index apex_of_corner(Index k) const
+  {
+    const Index h = m_outp[k];
+    return (*m_triangles)[h % 3 == 0 ? h + 2 : h - 1];
+  }
+
+  // the end of vertex i's corners (a row of the halfedges ends with its border halfedges)
+  Index corners_end(std::size_t i) const
+  {
+    Index e = m_offs[i + 1];
+    while(e > m_offs[i] && m_outp[e - 1] >= m_h0)
+      --e;
+    return e;
   }
 
   // Pairs the corners of vertex i (m_corner_twin, m_apex_matched; first come, first served
@@ -186,16 +241,22 @@ private:
   // would otherwise make the compiler reload every array's address in the inner loop.)
   Relaxation_row_rule match_ring(std::size_t i, const unsigned char* fixed, std::vector<std::pair<Index, Index> >& sorted)
   {
-    const Index b = m_ring_offsets[i], e = m_ring_offsets[i + 1];
+    const Index b = m_offs[i], e = corners_end(i);
     if(b == e || (fixed != nullptr && fixed[i]))
       return Relaxation_row_rule::FIXED;
-    const Index* target = m_out_target.data();
-    const Index* apex = m_out_apex.data();
     Index* twin_of = m_corner_twin.data();
     unsigned char* matched = m_apex_matched.data();
     bool border = false;
     if(e - b <= 32)
     {
+      Index ring_target[32], ring_apex[32];
+      for(Index k = b; k < e; ++k)
+      {
+        ring_target[k - b] = target_of_corner(k);
+        ring_apex[k - b] = apex_of_corner(k);
+      }
+      const Index* target = ring_target - b;
+      const Index* apex = ring_apex - b;
       // the twin of corner k is the corner whose apex is k's target: unique in a halfedge
       // mesh, found without branches; a second claim on a corner (a directed edge listed
       // twice) falls back to the search below, first come, first served
@@ -242,13 +303,13 @@ private:
       sorted.clear();
       for(Index m = b; m < e; ++m)
       {
-        sorted.emplace_back(apex[m], m);
+        sorted.emplace_back(apex_of_corner(m), m);
         matched[m] = 0;
       }
       std::sort(sorted.begin(), sorted.end());
       for(Index k = b; k < e; ++k)
       {
-        const Index a = target[k];
+        const Index a = target_of_corner(k);
         Index twin = invalid_index;
         for(auto it = std::lower_bound(sorted.begin(), sorted.end(), std::make_pair(a, Index(0)));
             it != sorted.end() && it->first == a; ++it)
@@ -269,7 +330,7 @@ private:
   {
     if(rule == Relaxation_row_rule::FIXED)
       return 1;
-    const Index b = m_ring_offsets[i], e = m_ring_offsets[i + 1];
+    const Index b = m_offs[i], e = corners_end(i);
     if(rule != Relaxation_row_rule::BORDER)
       return e - b;
     std::size_t count = 0;
@@ -282,36 +343,36 @@ private:
   // that are nobody's twin (the border halfedges out of i, in Triangle_halfedges' order)
   std::size_t ring_border_columns(std::size_t i, Index* col) const
   {
-    const Index b = m_ring_offsets[i], e = m_ring_offsets[i + 1];
+    const Index b = m_offs[i], e = corners_end(i);
     std::size_t count = 0;
     for(Index k = b; k < e; ++k)
       if(m_corner_twin[k] == invalid_index)
-        col[count++] = m_out_target[k];
+        col[count++] = target_of_corner(k);
     for(Index m = b; m < e; ++m)
       if(!m_apex_matched[m])
-        col[count++] = m_out_apex[m];
+        col[count++] = apex_of_corner(m);
     return count;
   }
 
   void uniform_ring_row(std::size_t i, Index* col, double* val) const
   {
-    const Index b = m_ring_offsets[i], e = m_ring_offsets[i + 1];
+    const Index b = m_offs[i], e = corners_end(i);
     const double v = 1. / double(e - b);
     for(Index k = b; k < e; ++k)
     {
-      *col++ = m_out_target[k];
+      *col++ = target_of_corner(k);
       *val++ = v;
     }
   }
 
   Relaxation_row_rule curvature_ring_row(std::size_t i, Index* col, double* val) const
   {
-    const Index b = m_ring_offsets[i], e = m_ring_offsets[i + 1];
+    const Index b = m_offs[i], e = corners_end(i);
     for(Index k = b; k < e; ++k)
     {
-      const Index into_i = m_out[m_corner_twin[k]];   // i -> b in the twin's face: its previous halfedge is a -> i
-      col[k - b] = m_out_target[k];
-      val[k - b] = m_cotangent[m_out[k]] + m_cotangent[into_i % 3 == 0 ? into_i + 2 : into_i - 1];
+      const Index into_i = m_outp[m_corner_twin[k]];   // i -> b in the twin's face: its previous halfedge is a -> i
+      col[k - b] = target_of_corner(k);
+      val[k - b] = m_cotangent[m_outp[k]] + m_cotangent[into_i % 3 == 0 ? into_i + 2 : into_i - 1];
     }
     return normalised_curvature_row(e - b, val);
   }
@@ -392,6 +453,29 @@ private:
   }
 
   // m_cotangent[h] = cotangent of the angle opposite the face halfedge h in its face
+  // the (clamped) cotangents of the angles of the triangle t[0] t[1] t[2] opposite its
+  // halfedges t[k] -> t[k+1], k = 0, 1, 2
+  static void face_cotangents(const Index* t, const double* xyz, double cot[3])
+  {
+    const double* p[3] = {xyz + 3 * std::size_t(t[0]), xyz + 3 * std::size_t(t[1]), xyz + 3 * std::size_t(t[2])};
+    double e[3][3];   // e[k] = p[k+1] - p[k]
+    for(int k = 0; k < 3; ++k)
+      for(int c = 0; c < 3; ++c)
+        e[k][c] = p[(k + 1) % 3][c] - p[k][c];
+    const double cx = e[0][1] * e[2][2] - e[0][2] * e[2][1];
+    const double cy = e[0][2] * e[2][0] - e[0][0] * e[2][2];
+    const double cz = e[0][0] * e[2][1] - e[0][1] * e[2][0];
+    const double double_area = std::sqrt(cx * cx + cy * cy + cz * cz);   // shared by the three angles
+    for(int k = 0; k < 3; ++k)
+    {
+      // angle at corner k+2, opposite the halfedge p[k] -> p[k+1]: between -e[k+1] and e[k+2]
+      const double* u = e[(k + 1) % 3];
+      const double* v = e[(k + 2) % 3];
+      cot[k] = clamped_cotangent(-(u[0] * v[0] + u[1] * v[1] + u[2] * v[2]), double_area);
+    }
+  }
+
+  // m_cotangent[h] = cotangent of the angle opposite the face halfedge h in its face
   void compute_cotangents(const double* xyz)
   {
     const std::vector<Index>& tri = *m_triangles;
@@ -399,25 +483,7 @@ private:
     m_cotangent.resize(3 * nf);
     parallel_for_blocks(nf, [&](std::size_t first, std::size_t last) {
       for(std::size_t f = first; f < last; ++f)
-      {
-        const double* p[3] = {xyz + 3 * std::size_t(tri[3 * f]), xyz + 3 * std::size_t(tri[3 * f + 1]),
-                              xyz + 3 * std::size_t(tri[3 * f + 2])};
-        double e[3][3];   // e[k] = p[k+1] - p[k]
-        for(int k = 0; k < 3; ++k)
-          for(int c = 0; c < 3; ++c)
-            e[k][c] = p[(k + 1) % 3][c] - p[k][c];
-        const double cx = e[0][1] * e[2][2] - e[0][2] * e[2][1];
-        const double cy = e[0][2] * e[2][0] - e[0][0] * e[2][2];
-        const double cz = e[0][0] * e[2][1] - e[0][1] * e[2][0];
-        const double double_area = std::sqrt(cx * cx + cy * cy + cz * cz);   // shared by the three angles
-        for(int k = 0; k < 3; ++k)
-        {
-          // angle at corner k+2, opposite the halfedge p[k] -> p[k+1]: between -e[k+1] and e[k+2]
-          const double* u = e[(k + 1) % 3];
-          const double* v = e[(k + 2) % 3];
-          m_cotangent[3 * f + k] = clamped_cotangent(-(u[0] * v[0] + u[1] * v[1] + u[2] * v[2]), double_area);
-        }
-      }
+        face_cotangents(tri.data() + 3 * f, xyz, m_cotangent.data() + 3 * f);
     });
   }
 
@@ -592,6 +658,11 @@ private:
   // the corners around every vertex (corners()) and their pairing (match_ring())
   std::vector<Index> m_ring_offsets, m_out, m_out_target, m_out_apex, m_corner_twin;
   std::vector<unsigned char> m_apex_matched;
+  // the corner lists read: the halfedges' where they are built, else the ones above
+  const Index* m_offs = nullptr;
+  const Index* m_outp = nullptr;
+  std::size_t m_rows = 0;
+  Index m_h0 = 0;
   std::vector<double> m_cotangent;
   std::vector<std::array<double, 4> > m_hinge;
   std::vector<unsigned char> m_hinge_valid;
