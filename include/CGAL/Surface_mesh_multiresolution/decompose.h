@@ -118,7 +118,10 @@ private:
                      m_on_border, m_locked, m_accepted);
     std::sort(m_accepted.begin(), m_accepted.end(), [](const Collapse& a, const Collapse& b) { return a.o < b.o; });
     if(m_scheme != Relaxation_scheme::SECOND_ORDER_DIFFERENCE)   // SOD's hinges read the twins
+    {
+      m_builder.pair_corners_from_halfedges();
       m_builder.keep_outgoing_lists_only();
+    }
   }
 
   void record_rows_and_targets(Pyramid_level& level)

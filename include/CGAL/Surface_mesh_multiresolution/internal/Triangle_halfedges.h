@@ -252,22 +252,20 @@ private:
       extra[i + 1] += extra[i];
       out_offsets[i + 1] = face_off[i + 1] + extra[i + 1];
     }
-    std::vector<Index> face_out, face_out_target, face_out_apex;
-    face_out.swap(out);
-    face_out_target.swap(out_target);
-    face_out_apex.swap(out_apex);
-    out.resize(nh);
-    out_target.resize(nh);
-    out_apex.assign(with_apexes ? nh : 0, invalid_index);
+    // the rows widened one array at a time (a copy of a single array beside them at the peak)
+    auto widen = [&](std::vector<Index>& a, Index filler) {
+      std::vector<Index> wide(nh, filler);
+      for(std::size_t i = 0; i < n; ++i)
+        std::copy(a.begin() + face_off[i], a.begin() + face_off[i + 1], wide.begin() + out_offsets[i]);
+      a.swap(wide);
+    };
+    widen(out, 0);
+    widen(out_target, 0);
+    if(with_apexes)
+      widen(out_apex, invalid_index);
     std::vector<Index> fill(n);
     for(std::size_t i = 0; i < n; ++i)
-    {
-      std::copy(face_out.begin() + face_off[i], face_out.begin() + face_off[i + 1], out.begin() + out_offsets[i]);
-      std::copy(face_out_target.begin() + face_off[i], face_out_target.begin() + face_off[i + 1], out_target.begin() + out_offsets[i]);
-      if(with_apexes)
-        std::copy(face_out_apex.begin() + face_off[i], face_out_apex.begin() + face_off[i + 1], out_apex.begin() + out_offsets[i]);
       fill[i] = out_offsets[i] + (face_off[i + 1] - face_off[i]);
-    }
     Index g = h0;
     for(Index h = 0; h < h0; ++h)
       if(twin[h] == invalid_index)

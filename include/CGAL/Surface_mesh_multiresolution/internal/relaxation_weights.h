@@ -90,6 +90,7 @@ public:
     m_n = n;
     m_has_halfedges = with_apexes;
     m_has_corners = false;
+    m_paired = false;
     if(with_apexes)
       m_mesh.build(n, triangles, true);
   }
@@ -99,6 +100,30 @@ public:
   {
     halfedges();
     return m_mesh;
+  }
+
+  // The corners paired through the halfedges' twins: the pairing match_ring() finds on a
+  // halfedge mesh (the decomposition's levels), without its search. The next build() on this
+  // connectivity uses it. Frees the halfedges but the lists of outgoing halfedges and the
+  // twins (keep_outgoing_lists_only() frees those).
+  void pair_corners_from_halfedges()
+  {
+    halfedges();
+    for(std::vector<Index>* v : {&m_mesh.source, &m_mesh.target, &m_mesh.out_target, &m_mesh.out_apex})
+      std::vector<Index>().swap(*v);      // not read from here on: freed before the pairs are made
+    corners();
+    const Triangle_halfedges& th = m_mesh;
+    parallel_for_blocks(m_n, [&](std::size_t first, std::size_t last) {
+      for(std::size_t i = first; i < last; ++i)
+        for(Index k = m_offs[i], e = corners_end(i); k < e; ++k)
+        {
+          const Index h = m_outp[k], into = th.twin[h];   // i -> a, a -> i
+          m_corner_twin[k] = th.has_face(into) ? Triangle_halfedges::next_in_face(into) : invalid_index;
+          const Index from = th.twin[h % 3 == 0 ? h + 2 : h - 1];   // i -> b, twin of the corner's b -> i
+          m_apex_matched[k] = th.has_face(from) ? 1 : 0;
+        }
+    });
+    m_paired = true;
   }
 
   // frees all of the halfedges but the vertices' lists of outgoing halfedges (out_offsets,
@@ -114,6 +139,7 @@ public:
   void release_weight_data()
   {
     m_has_corners = false;
+    m_paired = false;
     m_cotangent = std::vector<double>();
     for(std::vector<Index>* v : {&m_ring_offsets, &m_out, &m_out_target, &m_out_apex, &m_corner_twin})
       std::vector<Index>().swap(*v);
@@ -144,7 +170,7 @@ public:
       std::vector<std::pair<Index, Index> > sorted;   // long rings only
       for(std::size_t i = first; i < last; ++i)
       {
-        rules[i] = match_ring(i, fixed, sorted);
+        rules[i] = m_paired ? rule_of_paired_ring(i, fixed) : match_ring(i, fixed, sorted);
         w.offsets[i + 1] = static_cast<Index>(ring_row_length(i, rules[i]));
       }
     });
@@ -234,8 +260,10 @@ private:
     return e;
   }
 
-  // Pairs the corners of vertex i (m_corner_twin, m_apex_matched; first come, first served
-  // where a directed edge repeats) and returns FIXED, BORDER or SCHEME. Rings longer than 32
+  // Pairs the corners of vertex i (m_corner_twin[k]: the halfedge out of i in the face across
+  // the edge of corner k, or invalid_index; m_apex_matched[m]: whether corner m is some
+  // corner's twin; first come, first served where a directed edge repeats) and returns FIXED,
+  // BORDER or SCHEME. Rings longer than 32
   // corners are searched through a sorted copy (`sorted`, scratch), so that a vertex of valence
   // D costs D log D, not D^2. (Local pointers and a bit mask: stores through the byte flags
   // would otherwise make the compiler reload every array's address in the inner loop.)
@@ -268,7 +296,7 @@ private:
         Index twin = invalid_index;
         for(Index m = e; m-- > b; )
           twin = apex[m] == a ? m : twin;
-        twin_of[k] = twin;
+        twin_of[k] = twin;                // a position for now: a halfedge below
         if(twin == invalid_index)
           border = true;
         else
@@ -297,6 +325,9 @@ private:
       for(Index m = b; m < e; ++m)
         matched[m] = static_cast<unsigned char>((used >> (m - b)) & 1u);
       border = border || used != (e - b == 32 ? ~std::uint32_t(0) : (std::uint32_t(1) << (e - b)) - 1);
+      for(Index k = b; k < e; ++k)
+        if(twin_of[k] != invalid_index)
+          twin_of[k] = m_outp[twin_of[k]];
     }
     else
     {
@@ -314,7 +345,7 @@ private:
         for(auto it = std::lower_bound(sorted.begin(), sorted.end(), std::make_pair(a, Index(0)));
             it != sorted.end() && it->first == a; ++it)
           if(!matched[it->second]) { twin = it->second; break; }
-        twin_of[k] = twin;
+        twin_of[k] = twin == invalid_index ? invalid_index : m_outp[twin];
         if(twin == invalid_index)
           border = true;
         else
@@ -324,6 +355,18 @@ private:
         border = !matched[m];
     }
     return border ? Relaxation_row_rule::BORDER : Relaxation_row_rule::SCHEME;
+  }
+
+  // FIXED, BORDER or SCHEME from the pairing of pair_corners_from_halfedges()
+  Relaxation_row_rule rule_of_paired_ring(std::size_t i, const unsigned char* fixed) const
+  {
+    const Index b = m_offs[i], e = corners_end(i);
+    if(b == e || (fixed != nullptr && fixed[i]))
+      return Relaxation_row_rule::FIXED;
+    for(Index k = b; k < e; ++k)
+      if(m_corner_twin[k] == invalid_index || !m_apex_matched[k])
+        return Relaxation_row_rule::BORDER;
+    return Relaxation_row_rule::SCHEME;
   }
 
   std::size_t ring_row_length(std::size_t i, Relaxation_row_rule rule) const
@@ -370,7 +413,7 @@ private:
     const Index b = m_offs[i], e = corners_end(i);
     for(Index k = b; k < e; ++k)
     {
-      const Index into_i = m_outp[m_corner_twin[k]];   // i -> b in the twin's face: its previous halfedge is a -> i
+      const Index into_i = m_corner_twin[k];   // i -> b in the twin's face: its previous halfedge is a -> i
       col[k - b] = target_of_corner(k);
       val[k - b] = m_cotangent[m_outp[k]] + m_cotangent[into_i % 3 == 0 ? into_i + 2 : into_i - 1];
     }
@@ -653,7 +696,7 @@ private:
 
   const std::vector<Index>* m_triangles = nullptr;
   std::size_t m_n = 0;
-  bool m_has_halfedges = false, m_has_corners = false;
+  bool m_has_halfedges = false, m_has_corners = false, m_paired = false;
   Triangle_halfedges m_mesh;
   // the corners around every vertex (corners()) and their pairing (match_ring())
   std::vector<Index> m_ring_offsets, m_out, m_out_target, m_out_apex, m_corner_twin;
