@@ -34,6 +34,7 @@
 
 #include <cstdio>
 #include <fstream>
+#include <sstream>
 #include <functional>
 #include <iostream>
 #include <string>
@@ -182,6 +183,7 @@ int main(int argc, char** argv)
               "| OpenMesh decimater (s) | meshopt_simplify (s) | decompose / SMS | reconstruct / decompose | decompose / meshopt "
               "| µs per vertex | decompose peak RSS (MiB, mesh included) | peak / mesh RSS |\n");
   std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+  std::vector<std::string> storage_rows;   // the second table, printed after the first
   for(const std::string& file : files)
   {
     Mesh mesh;
@@ -283,11 +285,58 @@ int main(int argc, char** argv)
     });
     std::string name = file.substr(file.find_last_of('/') + 1);
     const double refilter_s = 1e-6 * double(refilter.result);
+
+    // the saved pyramid against the input's binary PLY, and the weights kept (store_weights())
+    std::string ply_bytes, pyramid_bytes;
+    {
+      std::ostringstream ply(std::ios::binary);
+      CGAL::IO::write_PLY(ply, mesh, CGAL::parameters::use_binary_mode(true));
+      ply_bytes = ply.str();
+    }
+    const Measure write = timed([&] {
+      std::ostringstream out(std::ios::binary);
+      SMR::IO::write_pyramid(out, pyr);
+      pyramid_bytes = out.str();
+      return long(pyramid_bytes.size());
+    });
+    const Measure read = timed([&] {
+      SMR::Pyramid<Mesh> p;
+      std::istringstream in(pyramid_bytes, std::ios::binary);
+      return SMR::IO::read_pyramid(in, p) ? long(p.number_of_levels()) : -1L;
+    });
+    SMR::Pyramid<Mesh> stored = pyr;
+    CGAL::Real_timer store_timer;
+    store_timer.start();
+    SMR::store_weights(stored);
+    const double store_s = store_timer.time();
+    const Measure rec_stored = timed([&] { Mesh out; SMR::reconstruct(stored, out); return long(out.number_of_vertices()); });
+    const Measure refilter_stored = timed([&] {
+      CGAL::Real_timer t;
+      t.start();
+      for(int i = 0; i < 10; ++i)
+      {
+        for(std::size_t j = 2; j <= (std::min)(std::size_t(4), stored.number_of_levels()); ++j)
+          SMR::scale_details(stored, j, i % 2 == 0 ? 2. : 0.5);
+        SMR::reconstruct(stored, previous, SMR::parameters::keep_connectivity(true));
+      }
+      return long(1e6 * t.time() / 10);
+    });
+    char row[512];
+    std::snprintf(row, sizeof(row), "| %s | %.1f | %.1f | %.2f | %.3f | %.3f | %.3f | %.3f | %.3f; %.1f |",
+                  name.c_str(), 1e-6 * double(ply_bytes.size()), 1e-6 * double(pyramid_bytes.size()),
+                  double(pyramid_bytes.size()) / double(ply_bytes.size()), write.seconds, read.seconds, store_s,
+                  rec_stored.seconds, 1e-6 * double(refilter_stored.result), double(n) / double(refilter_stored.result));
+    storage_rows.push_back(row);
     std::printf("| %s | %ld | %.1f | %ld | %.3f | %.3f | %.3f; %.1f | %.3f (%ld v) | %.3f (%ld v) | %.3f (%ld v) | %.2f | %.3f | %.1f | %.2f | %.1f | %.2f |\n",
                 name.c_str(), n, mesh_rss, target, dec.seconds, rec.seconds, refilter_s, 1e-6 * double(n) / refilter_s, sms.seconds, sms.result, omd.seconds, omd.result,
                 mo.seconds, mo.result, dec.seconds / sms.seconds, rec.seconds / dec.seconds, dec.seconds / mo.seconds,
                 1e6 * dec.seconds / double(n), peak - base, (peak - base) / mesh_rss);
     std::fflush(stdout);
   }
+  std::printf("\n| mesh | binary PLY (MB) | pyramid file (MB) | file / PLY | write (s) | read (s) | store_weights (s) "
+              "| reconstruct, weights stored (s) | re-filter, weights stored (s; M v/s) |\n");
+  std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+  for(const std::string& row : storage_rows)
+    std::printf("%s\n", row.c_str());
   return 0;
 }
