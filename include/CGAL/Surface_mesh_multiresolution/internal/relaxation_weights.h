@@ -214,28 +214,26 @@ private:
   // Triangle_halfedges (the face halfedges, then the border ones): the same weights as a walk
   // on the halfedges, without building twins for the whole mesh (a third of the time of a
   // one-shot relaxation was that build).
+  // Lists the corners if needed and points m_offs and m_outp at the lists read (set again at
+  // every call, so that a copied builder reads its own arrays)
   void corners()
   {
-    if(m_has_corners)
-      return;
-    if(m_has_halfedges)                   // the halfedges list them (then the border halfedges, skipped)
+    if(!m_has_corners)
     {
-      m_offs = m_mesh.out_offsets.data();
-      m_outp = m_mesh.out.data();
-      m_rows = m_mesh.out.size();
+      if(!m_has_halfedges)
+      {
+        list_face_halfedges_by_source(m_n, *m_triangles, false, m_ring_offsets, m_out, m_out_target, m_out_apex);
+        std::vector<Index>().swap(m_out_target);   // read from the faces (target_of_corner())
+      }
+      const std::size_t rows = m_has_halfedges ? m_mesh.out.size() : m_out.size();
+      m_corner_twin.resize(rows);
+      m_apex_matched.resize(rows);
+      m_has_corners = true;
     }
-    else
-    {
-      list_face_halfedges_by_source(m_n, *m_triangles, false, m_ring_offsets, m_out, m_out_target, m_out_apex);
-      m_out_target = std::vector<Index>();   // read from the faces (target_of_corner())
-      m_offs = m_ring_offsets.data();
-      m_outp = m_out.data();
-      m_rows = m_out.size();
-    }
+    // the halfedges list the corners where they are built (then the border halfedges, skipped)
+    m_offs = m_has_halfedges ? m_mesh.out_offsets.data() : m_ring_offsets.data();
+    m_outp = m_has_halfedges ? m_mesh.out.data() : m_out.data();
     m_h0 = static_cast<Index>(m_triangles->size());
-    m_corner_twin.resize(m_rows);
-    m_apex_matched.resize(m_rows);
-    m_has_corners = true;
   }
 
   // the vertex after and the vertex before corner k in its face (read from the face array,
@@ -704,7 +702,6 @@ private:
   // the corner lists read: the halfedges' where they are built, else the ones above
   const Index* m_offs = nullptr;
   const Index* m_outp = nullptr;
-  std::size_t m_rows = 0;
   Index m_h0 = 0;
   std::vector<double> m_cotangent;
   std::vector<std::array<double, 4> > m_hinge;
