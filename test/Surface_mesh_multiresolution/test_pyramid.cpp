@@ -735,8 +735,8 @@ TEST_CASE("the candidates' radix sort orders by (cost, halfedge) like a comparis
   CGAL::Random rng(8);
   for(int trial = 0; trial < 7; ++trial)
   {
-    // trial 6: more candidates than one block of the parallel passes
-    std::vector<double> cost_of(trial == 0 ? 1 : trial == 6 ? 150000 : 20000);
+    // trial 6: more candidates than one block of the parallel passes (sort and front selection)
+    std::vector<double> cost_of(trial == 0 ? 1 : trial == 6 ? 300000 : 20000);
     for(double& cost : cost_of)
     {
       switch(rng.get_int(0, 6))
@@ -752,7 +752,7 @@ TEST_CASE("the candidates' radix sort orders by (cost, halfedge) like a comparis
     // the split of the key follows the number of halfedges: 15 halfedge bits here, 31 (and only
     // 33 cost bits) when the level is declared to have 2^31 halfedges
     const SMR::internal::Candidate_key key((trial == 4 || trial == 5) ? (std::size_t(1) << 31) : cost_of.size());
-    CHECK(key.halfedge_bits() == ((trial == 4 || trial == 5) ? 31 : (trial == 0 ? 0 : trial == 6 ? 18 : 15)));
+    CHECK(key.halfedge_bits() == ((trial == 4 || trial == 5) ? 31 : (trial == 0 ? 0 : trial == 6 ? 19 : 15)));
     std::vector<std::uint64_t> c;
     std::vector<SMR::internal::Index> expected;
     for(std::size_t i = 0; i < cost_of.size(); ++i)
@@ -764,7 +764,29 @@ TEST_CASE("the candidates' radix sort orders by (cost, halfedge) like a comparis
     std::sort(expected.begin(), expected.end(), [&](auto a, auto b) { return cost_of[a] < cost_of[b] || (cost_of[a] == cost_of[b] && a < b); });
     if(trial % 2 == 1 || trial == 6)   // the input order does not matter
       std::shuffle(c.begin(), c.end(), std::mt19937(trial));
-    SMR::internal::sort_candidates(c, key, [&](SMR::internal::Index h) { return cost_of[h]; });
+    auto cost = [&](SMR::internal::Index h) { return cost_of[h]; };
+    // the front of move_cheapest_first() (refused keys mixed in) is a true prefix of the order:
+    // sorting it and the rest apart gives the full order, and it holds at least the wanted keys
+    constexpr std::uint64_t refused = ~std::uint64_t(0);
+    for(std::size_t wanted : {std::size_t(0), std::size_t(1), cost_of.size() / 7, cost_of.size() / 2, cost_of.size()})
+    {
+      std::vector<std::uint64_t> m;
+      for(std::size_t i = 0; i < c.size(); ++i)
+      {
+        if(i % 5 == 2)
+          m.push_back(refused);
+        m.push_back(c[i]);
+      }
+      const std::size_t front = SMR::internal::move_cheapest_first(m, key, refused, wanted);
+      REQUIRE(m.size() == c.size());
+      CHECK(front >= (std::min)(wanted, c.size()));
+      CHECK(front <= m.size());
+      SMR::internal::sort_candidates(m.data(), front, key, cost);
+      SMR::internal::sort_candidates(m.data() + front, m.size() - front, key, cost);
+      for(std::size_t i = 0; i < m.size(); ++i)
+        REQUIRE(key.halfedge(m[i]) == expected[i]);
+    }
+    SMR::internal::sort_candidates(c.data(), c.size(), key, cost);
     REQUIRE(c.size() == expected.size());
     for(std::size_t i = 0; i < c.size(); ++i)
       REQUIRE(key.halfedge(c[i]) == expected[i]);

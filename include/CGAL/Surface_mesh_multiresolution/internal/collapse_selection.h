@@ -141,9 +141,8 @@ private:
 // costs and halfedges inside each run of equal cost bits (rare), which makes the order total
 // whatever the input order. Deterministic: the same order for any number of threads.
 template <typename CostOfHalfedge>
-void sort_candidates(std::vector<std::uint64_t>& c, const Candidate_key& key, const CostOfHalfedge& cost)
+void sort_candidates(std::uint64_t* c, std::size_t n, const Candidate_key& key, const CostOfHalfedge& cost)
 {
-  const std::size_t n = c.size();
   constexpr int digit_bits = 10;
   constexpr std::size_t buckets = std::size_t(1) << digit_bits;
   constexpr std::uint64_t mask = buckets - 1;
@@ -155,7 +154,7 @@ void sort_candidates(std::vector<std::uint64_t>& c, const Candidate_key& key, co
   const std::size_t blocks = (n + block - 1) / block;
   std::vector<std::size_t> count(blocks * buckets);
   std::vector<std::uint64_t> scratch(n);
-  std::uint64_t* from = c.data();
+  std::uint64_t* from = c;
   std::uint64_t* to = scratch.data();
   for(int d = 0; d < digits; ++d)
   {
@@ -196,8 +195,8 @@ void sort_candidates(std::vector<std::uint64_t>& c, const Candidate_key& key, co
     }, 1);
     std::swap(from, to);
   }
-  if(from != c.data())
-    std::copy(from, from + n, c.data());
+  if(from != c)
+    std::copy(from, from + n, c);
   scratch = std::vector<std::uint64_t>();
   std::vector<std::pair<double, Index> > run;
   for(std::size_t i = 0; i < n;)
@@ -323,6 +322,107 @@ double candidate_cost(const Triangle_halfedges& th, const CostOfRows& cost, cons
   return oc ? *oc : std::numeric_limits<double>::quiet_NaN();
 }
 
+// Moves the cheapest candidate keys to the front of `c` and drops the `refused` ones; returns
+// the length of that front: the keys whose leading 24 cost bits are at most those of the
+// wanted-th cheapest key (all keys when wanted is at least half of them). The front is a true
+// prefix of the sorted order, runs of equal cost bits included, whatever the order inside it.
+// Why by hand: std::nth_element over the 6 n candidates was sequential (10 % of the dragon's
+// decomposition on two threads); this is a radix select (two histograms of 12-bit digits in
+// fixed blocks, then a scatter of the front in block order), parallel and deterministic. The
+// rest keeps its input order (compacted in place, no copy of the candidates at level 0's peak).
+inline std::size_t move_cheapest_first(std::vector<std::uint64_t>& c, const Candidate_key& key, std::uint64_t refused,
+                                       std::size_t wanted)
+{
+  const std::size_t n = c.size();
+  constexpr int digit_bits = 12;
+  constexpr std::size_t buckets = std::size_t(1) << digit_bits;
+  constexpr std::size_t block = std::size_t(1) << 18;
+  const std::size_t blocks = (n + block - 1) / block;
+  const int used = key.cost_bits() + key.halfedge_bits();      // key bits in use (refused: all 64)
+  const int shift1 = used - digit_bits, shift2 = (std::max)(key.halfedge_bits(), used - 2 * digit_bits);
+  const std::uint64_t mask = buckets - 1;
+  std::vector<std::size_t> hist1(blocks * buckets), hist2(blocks * buckets), kept(blocks);
+  auto for_blocks = [&](const auto& f) {
+    parallel_for_blocks(blocks, [&](std::size_t first, std::size_t last) {
+      for(std::size_t b = first; b < last; ++b)
+        f(b, b * block, (std::min)(n, (b + 1) * block));
+    }, 1);
+  };
+  for_blocks([&](std::size_t b, std::size_t first, std::size_t last) {
+    std::size_t* h = hist1.data() + b * buckets;
+    std::size_t k = 0;
+    for(std::size_t i = first; i < last; ++i)
+      if(c[i] != refused) { ++h[(c[i] >> shift1) & mask]; ++k; }
+    kept[b] = k;
+  });
+  std::size_t total = 0;
+  for(std::size_t k : kept)
+    total += k;
+  auto compact_in_place = [&] {                                 // stable: the keys' order kept
+    c.erase(std::remove(c.begin(), c.end(), refused), c.end());
+  };
+  if(2 * (std::max)(wanted, std::size_t(1)) >= total)
+  {
+    compact_in_place();
+    return c.size();
+  }
+  // the bucket of the wanted-th key (1-based), first by the leading digit, then by the next
+  auto bucket_of_rank = [&](const std::vector<std::size_t>& hist, std::size_t rank, std::size_t& before) {
+    for(std::size_t v = 0; v < buckets; ++v)
+    {
+      std::size_t in = 0;
+      for(std::size_t b = 0; b < blocks; ++b)
+        in += hist[b * buckets + v];
+      if(before + in >= rank)
+        return static_cast<std::uint64_t>(v);
+      before += in;
+    }
+    return static_cast<std::uint64_t>(buckets - 1);            // not reached: rank <= total
+  };
+  const std::size_t rank = (std::max)(wanted, std::size_t(1));
+  std::size_t below = 0;
+  const std::uint64_t d1 = bucket_of_rank(hist1, rank, below);
+  for_blocks([&](std::size_t b, std::size_t first, std::size_t last) {
+    std::size_t* h = hist2.data() + b * buckets;
+    for(std::size_t i = first; i < last; ++i)
+      if(c[i] != refused && ((c[i] >> shift1) & mask) == d1)
+        ++h[(c[i] >> shift2) & mask];
+  });
+  const std::uint64_t d2 = bucket_of_rank(hist2, rank, below);
+  // in the front: leading digit below d1, or d1 and second digit at most d2
+  auto in_front = [&](std::uint64_t x) {
+    const std::uint64_t a = (x >> shift1) & mask;
+    return x != refused && (a < d1 || (a == d1 && ((x >> shift2) & mask) <= d2));
+  };
+  std::vector<std::size_t> offset(blocks + 1, 0);
+  for(std::size_t b = 0; b < blocks; ++b)
+  {
+    std::size_t in = 0;
+    for(std::size_t v = 0; v < d1; ++v)
+      in += hist1[b * buckets + v];
+    for(std::size_t v = 0; v <= d2; ++v)
+      in += hist2[b * buckets + v];
+    offset[b + 1] = offset[b] + in;
+  }
+  const std::size_t front = offset[blocks];
+  std::vector<std::uint64_t> first_keys(front);
+  for_blocks([&](std::size_t b, std::size_t first, std::size_t last) {
+    std::size_t w = offset[b];
+    for(std::size_t i = first; i < last; ++i)
+      if(in_front(c[i]))
+        first_keys[w++] = c[i];
+  });
+  // the rest, compacted towards the end in its order (written from the back: never over an unread key)
+  std::size_t w = n;
+  for(std::size_t i = n; i-- > 0;)
+    if(c[i] != refused && !in_front(c[i]))
+      c[--w] = c[i];
+  const std::size_t start = w - front;
+  std::copy(first_keys.begin(), first_keys.end(), c.begin() + start);
+  c.erase(c.begin(), c.begin() + start);
+  return front;
+}
+
 // The candidate collapses of one level, sorted: every halfedge o -> e of M_k, except those
 // that would move a border vertex off the border and those the cost model refuses, in
 // increasing cost (ties: halfedge number, so the order is total and the result does not depend
@@ -351,29 +451,14 @@ std::vector<std::uint64_t> sorted_candidates(const Triangle_halfedges& th, const
         candidates[k] = std::isnan(c) ? refused : key(c, h);
       }
   }, 1024);
-  candidates.erase(std::remove(candidates.begin(), candidates.end(), refused), candidates.end());
   // Only the cheapest `wanted` are sorted (the level considers them first; of about 6 n
-  // candidates it takes n): they are selected first (keys are unique: their halfedges), with
-  // every candidate whose cost bits equal the largest ones selected, since the exact costs
-  // order such runs; the rest keeps larger cost bits and is sorted if ever needed
-  // (sort_candidate_rest). The order of the prefix is that of a full sort. Dragon: 18 % of a
-  // decomposition in the sort before.
+  // candidates it takes n), with every candidate that shares their largest leading cost bits
+  // (the exact costs order runs of equal cost bits): a true prefix of the full order; the rest
+  // is sorted if ever needed (sort_candidate_rest). Dragon: 18 % of a decomposition in the sort
+  // before the partial sort; its std::nth_element then took 10 % on two threads, sequential.
   auto exact_cost = [&](Index h) { return cost_of_edge(h, th.source[h], th.target[h]); };
-  sorted = candidates.size();
-  if(wanted < candidates.size() / 2)
-  {
-    std::nth_element(candidates.begin(), candidates.begin() + wanted, candidates.end());
-    std::uint64_t largest = 0;
-    for(std::size_t i = 0; i < wanted; ++i)
-      largest = (std::max)(largest, key.cost_part(candidates[i]));
-    sorted = std::size_t(std::partition(candidates.begin() + wanted, candidates.end(),
-                                        [&](std::uint64_t c) { return key.cost_part(c) == largest; }) - candidates.begin());
-    std::vector<std::uint64_t> prefix(candidates.begin(), candidates.begin() + sorted);
-    sort_candidates(prefix, key, exact_cost);
-    std::copy(prefix.begin(), prefix.end(), candidates.begin());
-  }
-  else
-    sort_candidates(candidates, key, exact_cost);
+  sorted = move_cheapest_first(candidates, key, refused, wanted);
+  sort_candidates(candidates.data(), sorted, key, exact_cost);
   return candidates;
 }
 
@@ -385,9 +470,8 @@ void sort_candidate_rest(const Triangle_halfedges& th, const CostOfRows& cost, c
 {
   if(sorted >= candidates.size())
     return;
-  std::vector<std::uint64_t> rest(candidates.begin() + sorted, candidates.end());
-  sort_candidates(rest, key, [&](Index h) { return candidate_cost(th, cost, on_border, h, th.source[h], th.target[h]); });
-  std::copy(rest.begin(), rest.end(), candidates.begin() + sorted);
+  sort_candidates(candidates.data() + sorted, candidates.size() - sorted, key,
+                  [&](Index h) { return candidate_cost(th, cost, on_border, h, th.source[h], th.target[h]); });
 }
 
 // The greedy independent set of half-edge collapses of one level (Section 3.1): the
