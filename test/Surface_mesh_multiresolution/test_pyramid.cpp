@@ -27,6 +27,7 @@
 
 #ifdef CGAL_LINKED_WITH_TBB
 #include <tbb/global_control.h>
+#include <tbb/task_arena.h>
 #endif
 #include <vector>
 
@@ -351,25 +352,38 @@ TEST_CASE("tiny and degenerate inputs", "[pyramid][edge]")
   }
 }
 
-TEST_CASE("decomposition is deterministic: two runs, with all threads and with one, are identical", "[pyramid][determinism]")
+TEST_CASE("decomposition is deterministic: runs with all threads, with four (parallel selection) and with one are identical", "[pyramid][determinism]")
 {
   const Mesh m = smr_test::icosphere<Mesh>(5);   // 10,242 vertices: large enough for the parallel loops
   const auto a = SMR::decompose(m);
+  auto c = a;
 #ifdef CGAL_LINKED_WITH_TBB
+  {
+    tbb::task_arena four(4);   // four threads (even on fewer cores): the selection runs in parallel rounds
+    four.execute([&] {
+      CHECK(SMR::internal::available_threads() == 4);
+      c = SMR::decompose(m);
+    });
+  }
   tbb::global_control one_thread(tbb::global_control::max_allowed_parallelism, 1);   // b: sequential
 #endif
   const auto b = SMR::decompose(m);
-  REQUIRE(a.number_of_levels() == b.number_of_levels());
-  for(std::size_t k = 0; k < a.number_of_levels(); ++k)
+  const SMR::Pyramid<Mesh>* runs[] = {&a, &c};
+  for(const SMR::Pyramid<Mesh>* x : runs)
   {
-    CHECK(a.levels()[k].vertices == b.levels()[k].vertices);
-    CHECK(a.levels()[k].odd_rows == b.levels()[k].odd_rows);
-    CHECK(a.weight_positions() == b.weight_positions());
-    CHECK(a.levels()[k].details[0] == b.levels()[k].details[0]);
-    CHECK(a.levels()[k].removed_faces == b.levels()[k].removed_faces);
-    CHECK(a.levels()[k].corrections[0] == b.levels()[k].corrections[0]);
+    REQUIRE(x->number_of_levels() == b.number_of_levels());
+    for(std::size_t k = 0; k < b.number_of_levels(); ++k)
+    {
+      CHECK(x->levels()[k].vertices == b.levels()[k].vertices);
+      CHECK(x->levels()[k].odd_rows == b.levels()[k].odd_rows);
+      CHECK(x->levels()[k].collapse_targets == b.levels()[k].collapse_targets);
+      CHECK(x->weight_positions() == b.weight_positions());
+      CHECK(x->levels()[k].details[0] == b.levels()[k].details[0]);
+      CHECK(x->levels()[k].removed_faces == b.levels()[k].removed_faces);
+      CHECK(x->levels()[k].corrections[0] == b.levels()[k].corrections[0]);
+    }
+    CHECK(x->coarse_faces() == b.coarse_faces());
   }
-  CHECK(a.coarse_faces() == b.coarse_faces());
 }
 
 TEST_CASE("other SMS cost policies drive the downsampling", "[pyramid][cost]")
@@ -930,7 +944,7 @@ TEST_CASE("Triangle_halfedges pairs the halfedges of the mesh, also when a direc
   CHECK(!long_ring.has_face(long_ring.twin[3 * 40]));        // the second gets a border twin
 }
 
-TEST_CASE("the look-ahead greedy selection takes the collapses of the plain greedy loop", "[pyramid][cost]")
+TEST_CASE("the look-ahead greedy selection and its parallel rounds take the collapses of the plain greedy loop", "[pyramid][cost]")
 {
   typedef SMR::internal::Index Index;
   std::vector<Mesh> meshes;
@@ -951,11 +965,14 @@ TEST_CASE("the look-ahead greedy selection takes the collapses of the plain gree
     SMR::internal::Plane_quadrics quadrics;
     quadrics.initialize(th, xyz);
     auto cost = [&](Index o, Index e) { return quadrics.cost(o, e); };
+    // the loop with look-ahead, and the parallel rounds with windows of 1, 7, 64 and all candidates
+    for(const std::size_t window : {SMR::internal::sequential_selection, std::size_t(1), std::size_t(7), std::size_t(64),
+                                    std::size_t(1) << 30})
     for(const std::size_t budget : {std::size_t(-1), std::size_t(25)})
     {
       std::vector<unsigned char> on_border, locked;
       std::vector<SMR::internal::Collapse> accepted;
-      SMR::internal::select_collapses(th, xyz.data(), cost, budget, on_border, locked, accepted);
+      SMR::internal::select_collapses(th, xyz.data(), cost, budget, on_border, locked, accepted, window);
       // the reference: the th.n cheapest admissible halfedges in (cost, halfedge) order (half as
       // many again each time fewer than th.n / 16 + 1 are taken), taken when both ends are free
       // and the tests pass, its source's closed 1-ring then locked

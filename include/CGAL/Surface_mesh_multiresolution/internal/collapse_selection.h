@@ -14,10 +14,12 @@
 #include <CGAL/Surface_mesh_multiresolution/internal/Triangle_halfedges.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <limits>
+#include <memory>
 #include <utility>
 #include <vector>
 
@@ -311,6 +313,139 @@ void take_greedily(const Triangle_halfedges& th, const double* xyz, const std::v
 }
 
 
+// The selection of take_greedily() in parallel rounds, with the same result: a candidate is
+// taken by the greedy loop iff it is valid and no earlier taken candidate locked one of its
+// ends, and a taken candidate o -> e locks the closed 1-ring of o. Why by hand: the greedy
+// loop was the decomposition's largest sequential part. The candidates are decided a window
+// at a time by deterministic reservations (Blelloch, Fineman, Gibbons and Shun, "Internally
+// deterministic parallel algorithms can be fast", PPoPP 2012): in each round every undecided
+// candidate not yet blocked writes its position (atomic minimum) on the vertices it would
+// lock; one whose ends carry its own position has no undecided candidate before it that could
+// lock them, so it is decided now (tested, taken if valid); taken candidates then write their
+// position on the locks. Locks hold the smallest position of the candidates that took them,
+// and a candidate is blocked only by a lock of a smaller position: what a later candidate
+// takes never changes an earlier one's decision. The earliest undecided candidate is decided
+// in every round. Same decisions as the loop for any number of threads (a test compares them),
+// the same tests made (only candidates whose ends are free at their turn are tested).
+template <typename SortRest>
+void take_greedily_in_rounds(const Triangle_halfedges& th, const double* xyz, const std::vector<std::uint64_t>& candidates,
+                             std::size_t sorted, const SortRest& sort_rest, const Candidate_key& key, std::size_t budget,
+                             const std::vector<unsigned char>& on_border, std::vector<Collapse>& accepted,
+                             std::size_t considered, std::size_t minimum, std::size_t window)
+{
+  constexpr Index none = invalid_index;
+  constexpr std::size_t grain = 512;
+  std::unique_ptr<std::atomic<Index>[]> lock(new std::atomic<Index>[th.n]), reserve(new std::atomic<Index>[th.n]);
+  parallel_for_blocks(th.n, [&](std::size_t first, std::size_t last) {
+    for(std::size_t v = first; v < last; ++v)
+    {
+      lock[v].store(none, std::memory_order_relaxed);
+      reserve[v].store(none, std::memory_order_relaxed);
+    }
+  });
+  auto write_min = [](std::atomic<Index>& a, Index p) {
+    Index current = a.load(std::memory_order_relaxed);
+    while(p < current && !a.compare_exchange_weak(current, p, std::memory_order_relaxed)) {}
+  };
+  auto for_closed_ring = [&](Index o, const auto& f) {
+    f(o);
+    for(Index k = th.out_offsets[o]; k < th.out_offsets[o + 1]; ++k)
+      f(th.out_target[k]);
+  };
+  struct Pending { Index p, h, o, e; };
+  enum : unsigned char { undecided = 0, taken = 1, rejected = 2, blocked = 3 };
+  std::vector<Pending> pending, still;
+  std::vector<unsigned char> state;
+  std::vector<Pending> taken_here;
+  const std::size_t all = candidates.size();
+  std::size_t nc = (std::min)(all, considered), scan = 0;
+  if(nc > sorted)
+  {
+    sort_rest();
+    sorted = all;
+  }
+  while(accepted.size() < budget)
+  {
+    if(scan == nc)
+    {
+      if(nc < all && accepted.size() < minimum)
+      {
+        nc = (std::min)(all, nc + (nc + 1) / 2);              // too few accepted under the cap: look further
+        if(nc > sorted)
+        {
+          sort_rest();
+          sorted = all;
+        }
+        continue;
+      }
+      break;
+    }
+    const std::size_t count = (std::min)(nc - scan, window);
+    pending.resize(count);
+    parallel_for_blocks(count, [&](std::size_t first, std::size_t last) {
+      for(std::size_t i = first; i < last; ++i)
+      {
+        const Index h = key.halfedge(candidates[scan + i]);
+        pending[i] = Pending{static_cast<Index>(scan + i), h, th.source[h], th.target[h]};
+      }
+    }, grain);
+    scan += count;
+    taken_here.clear();
+    while(!pending.empty())
+    {
+      const std::size_t np = pending.size();
+      state.assign(np, undecided);
+      parallel_for_blocks(np, [&](std::size_t first, std::size_t last) {
+        for(std::size_t i = first; i < last; ++i)
+        {
+          const Pending& c = pending[i];
+          if(lock[c.o].load(std::memory_order_relaxed) < c.p || lock[c.e].load(std::memory_order_relaxed) < c.p)
+            state[i] = blocked;
+          else
+            write_min(reserve[c.o], c.p);
+        }
+      }, grain);
+      parallel_for_blocks(np, [&](std::size_t first, std::size_t last) {
+        for(std::size_t i = first; i < last; ++i)
+        {
+          const Pending& c = pending[i];
+          if(state[i] == blocked)
+            continue;
+          bool ready = true;
+          auto first_here = [&](Index v) { ready = ready && reserve[v].load(std::memory_order_relaxed) >= c.p; };
+          for_closed_ring(c.o, first_here);
+          for_closed_ring(c.e, first_here);
+          if(!ready)
+            continue;
+          state[i] = satisfies_link_condition(th, c.h, c.o, c.e, on_border) && !does_collapse_flip_a_face(th, c.o, c.e, xyz)
+                   ? taken : rejected;
+        }
+      }, grain);
+      parallel_for_blocks(np, [&](std::size_t first, std::size_t last) {
+        for(std::size_t i = first; i < last; ++i)
+        {
+          const Pending& c = pending[i];
+          if(state[i] == blocked)
+            continue;
+          reserve[c.o].store(none, std::memory_order_relaxed);
+          if(state[i] == taken)
+            for_closed_ring(c.o, [&](Index v) { write_min(lock[v], c.p); });
+        }
+      }, grain);
+      still.clear();
+      for(std::size_t i = 0; i < np; ++i)
+        if(state[i] == undecided)
+          still.push_back(pending[i]);
+        else if(state[i] == taken)
+          taken_here.push_back(pending[i]);
+      pending.swap(still);
+    }
+    std::sort(taken_here.begin(), taken_here.end(), [](const Pending& a, const Pending& b) { return a.p < b.p; });
+    for(std::size_t i = 0; i < taken_here.size() && accepted.size() < budget; ++i)
+      accepted.push_back(Collapse{taken_here[i].o, taken_here[i].e});
+  }
+}
+
 // The cost of the candidate halfedge h = o -> e, NaN for a refused collapse.
 template <typename CostOfRows>
 double candidate_cost(const Triangle_halfedges& th, const CostOfRows& cost, const std::vector<unsigned char>& on_border,
@@ -480,15 +615,20 @@ void sort_candidate_rest(const Triangle_halfedges& th, const CostOfRows& cost, c
 // Since accepted collapses have disjoint closed 1-rings around o and lock e, all tests can be
 // made on M_k: no collapse changes the 1-ring of another. `cost(o, e)` takes rows; xyz: 3
 // doubles per row. The candidates live only here, so the temporary memory of a level follows
-// its size. At most `budget` collapses are accepted.
+// its size. At most `budget` collapses are accepted. `window`: 0 chooses the loop below four
+// threads and parallel rounds (take_greedily_in_rounds(), windows of the level's n / 64
+// candidates, at least 4096) from four on; `sequential_selection` forces the loop, any other
+// value the rounds with windows of that many candidates. The accepted collapses are the same.
+constexpr std::size_t sequential_selection = ~std::size_t(0);
+
 template <typename CostOfRows>
 void select_collapses(const Triangle_halfedges& th, const double* xyz, const CostOfRows& cost, std::size_t budget,
-                      std::vector<unsigned char>& on_border, std::vector<unsigned char>& locked, std::vector<Collapse>& accepted)
+                      std::vector<unsigned char>& on_border, std::vector<unsigned char>& locked, std::vector<Collapse>& accepted,
+                      std::size_t window = 0)
 {
   Candidate_key key(0);
   std::size_t sorted = 0;
   std::vector<std::uint64_t> candidates = sorted_candidates(th, cost, on_border, key, th.n, sorted);
-  locked.assign(th.n, 0);
   accepted.clear();
   // Only the th.n cheapest candidates (of about 6 th.n) are considered, unless fewer than
   // th.n / 16 collapses are accepted among them: a level then leaves an expensive collapse to a
@@ -496,8 +636,20 @@ void select_collapses(const Triangle_halfedges& th, const double* xyz, const Cos
   // its ends happen to be free. Measured (bench_quality, adaptive meshes at 25 / 5 / 1 %): RMS
   // error 4-11 % lower; 7 more levels on the bunny and the dragon, dragon decomposition +15 %
   // (1.29 -> 1.47-1.53 s, one process; +4 % when first measured).
-  take_greedily(th, xyz, candidates, sorted, [&] { sort_candidate_rest(th, cost, on_border, key, candidates, sorted); },
-                key, budget, on_border, locked, accepted, th.n, th.n / 16 + 1);
+  auto sort_rest = [&] { sort_candidate_rest(th, cost, on_border, key, candidates, sorted); };
+  // The rounds do more work than the loop (reservations, three passes): on two threads they
+  // took as long as the loop (dragon, level 0: 0.12 s both), on one 40 % longer; they are used
+  // from four threads on, where the loop would be the largest sequential part
+  if(window == 0)
+    window = available_threads() >= 4 ? (std::max)(std::size_t(4096), th.n / 64) : sequential_selection;
+  if(window == sequential_selection)
+  {
+    locked.assign(th.n, 0);
+    take_greedily(th, xyz, candidates, sorted, sort_rest, key, budget, on_border, locked, accepted, th.n, th.n / 16 + 1);
+  }
+  else
+    take_greedily_in_rounds(th, xyz, candidates, sorted, sort_rest, key, budget, on_border, accepted, th.n, th.n / 16 + 1,
+                            window);
 }
 
 } // namespace internal

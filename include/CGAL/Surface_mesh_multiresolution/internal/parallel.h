@@ -17,6 +17,7 @@
 #ifdef CGAL_LINKED_WITH_TBB
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 #include <tbb/task_group.h>
 #endif
 
@@ -64,6 +65,16 @@ void parallel_for_blocks(std::size_t n, const F& f, std::size_t grain = 8192)
 
 // Sorts [first, last) by `compare`, in parallel with TBB when it is linked. Callers sort by
 // a total order (keys all different), so the result does not depend on the threads.
+// The number of threads the parallel loops may use here (1 without TBB).
+inline int available_threads()
+{
+#ifdef CGAL_LINKED_WITH_TBB
+  return tbb::this_task_arena::max_concurrency();
+#else
+  return 1;
+#endif
+}
+
 } // namespace internal
 } // namespace Surface_mesh_multiresolution
 } // namespace CGAL
