@@ -6,6 +6,8 @@
 // the memory of the decomposition is measured in a fresh process of this program.
 //
 // Usage: bench_pyramid [mesh files...]   (default: CGAL data meshes)
+//        bench_pyramid --scaling FILE...    (1, 2, 4, ... threads)
+//        bench_pyramid --sizes FILE N       (the mesh and N Loop subdivisions of it)
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/Surface_mesh_multiresolution.h>
@@ -16,6 +18,7 @@
 #include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
 #include <CGAL/IO/polygon_soup_io.h>
 #include <CGAL/boost/graph/IO/polygon_mesh_io.h>
+#include <CGAL/Subdivision_method_3/subdivision_methods_3.h>
 #include <CGAL/Surface_mesh_simplification/edge_collapse.h>
 #include <CGAL/Surface_mesh_simplification/Policies/Edge_collapse/GarlandHeckbert_plane_policies.h>
 
@@ -33,6 +36,7 @@
 #include <unistd.h>
 
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <sstream>
 #include <functional>
@@ -167,12 +171,66 @@ int scaling_mode(int argc, char** argv)
 #endif
 }
 
+// meshopt_simplify to about `target` vertices (its arrays built outside the timing)
+Measure meshopt_to(const Mesh& mesh, long target)
+{
+  std::vector<float> xyz;
+  std::vector<unsigned int> indices;
+  for(auto v : mesh.vertices()) xyz.insert(xyz.end(), {float(mesh.point(v).x()), float(mesh.point(v).y()), float(mesh.point(v).z())});
+  for(auto f : mesh.faces())
+    for(auto v : CGAL::vertices_around_face(mesh.halfedge(f), mesh)) indices.push_back(v.idx());
+  return timed([&] {
+    // meshoptimizer targets an index count: faces ~ 2 x vertices on a closed mesh
+    std::vector<unsigned int> out(indices.size());
+    const std::size_t count = meshopt_simplify(out.data(), indices.data(), indices.size(), xyz.data(), xyz.size() / 3,
+                                               3 * sizeof(float), std::size_t(6 * target), 1.f);
+    std::vector<char> used(xyz.size() / 3, 0);
+    long nv = 0;
+    for(std::size_t i = 0; i < count; ++i) if(!used[out[i]]) { used[out[i]] = 1; ++nv; }
+    return nv;
+  });
+}
+
+// `bench_pyramid --sizes FILE N`: the mesh and its 1..N Loop subdivisions (4x the vertices
+// each), decomposed to 1 % and simplified by meshopt_simplify to the same count: time per
+// vertex against size
+int sizes_mode(const char* file, int subdivisions)
+{
+  Mesh mesh;
+  if(!read_mesh(file, mesh)) return 1;
+  std::printf("| mesh | vertices | SMR decompose (s) | µs per vertex | per vertex / unsubdivided | meshopt_simplify (s) | µs per vertex | per vertex / unsubdivided | decompose / meshopt |\n");
+  std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+  double first_smr = 0, first_mo = 0;
+  const std::string name = std::string(file).substr(std::string(file).find_last_of('/') + 1);
+  for(int s = 0; s <= subdivisions; ++s)
+  {
+    if(s > 0)
+      CGAL::Subdivision_method_3::Loop_subdivision(mesh, CGAL::parameters::number_of_iterations(1));
+    const long n = long(mesh.number_of_vertices());
+    long target = 0;
+    const Measure dec = timed([&] {
+      const auto p = SMR::decompose(mesh, SMR::parameters::minimum_number_of_vertices(std::size_t(n / 100)));
+      return target = long(p.number_of_vertices(p.number_of_levels()));
+    });
+    const Measure mo = meshopt_to(mesh, target);
+    const double smr_us = 1e6 * dec.seconds / double(n), mo_us = 1e6 * mo.seconds / double(n);
+    if(s == 0) { first_smr = smr_us; first_mo = mo_us; }
+    std::printf("| %s, %d Loop subdivision%s | %ld | %.3f | %.2f | %.2f | %.3f (%ld v) | %.2f | %.2f | %.2f |\n", name.c_str(), s,
+                s == 1 ? "" : "s", n, dec.seconds, smr_us, smr_us / first_smr, mo.seconds, mo.result, mo_us, mo_us / first_mo,
+                dec.seconds / mo.seconds);
+    std::fflush(stdout);
+  }
+  return 0;
+}
+
 int main(int argc, char** argv)
 {
   if(argc == 3 && std::string(argv[1]) == "--memory")
     return memory_mode(argv[2]);
   if(argc >= 3 && std::string(argv[1]) == "--scaling")
     return scaling_mode(argc, argv);
+  if(argc == 4 && std::string(argv[1]) == "--sizes")
+    return sizes_mode(argv[2], std::atoi(argv[3]));
   std::vector<std::string> files;
   for(int i = 1; i < argc; ++i) files.push_back(argv[i]);
   if(files.empty())
@@ -271,21 +329,7 @@ int main(int argc, char** argv)
       m.garbage_collection();
       return long(m.n_vertices());
     });
-    std::vector<float> xyz;
-    std::vector<unsigned int> indices;
-    for(auto v : mesh.vertices()) xyz.insert(xyz.end(), {float(mesh.point(v).x()), float(mesh.point(v).y()), float(mesh.point(v).z())});
-    for(auto f : mesh.faces())
-      for(auto v : CGAL::vertices_around_face(mesh.halfedge(f), mesh)) indices.push_back(v.idx());
-    const Measure mo = timed([&] {
-      // meshoptimizer targets an index count: faces ~ 2 x vertices on a closed mesh
-      std::vector<unsigned int> out(indices.size());
-      const std::size_t count = meshopt_simplify(out.data(), indices.data(), indices.size(), xyz.data(), xyz.size() / 3,
-                                                 3 * sizeof(float), std::size_t(6 * target), 1.f);
-      std::vector<char> used(xyz.size() / 3, 0);
-      long nv = 0;
-      for(std::size_t i = 0; i < count; ++i) if(!used[out[i]]) { used[out[i]] = 1; ++nv; }
-      return nv;
-    });
+    const Measure mo = meshopt_to(mesh, target);
     std::string name = file.substr(file.find_last_of('/') + 1);
     const double refilter_s = 1e-6 * double(refilter.result);
 
