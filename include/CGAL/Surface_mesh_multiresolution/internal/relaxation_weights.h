@@ -221,10 +221,7 @@ private:
     if(!m_has_corners)
     {
       if(!m_has_halfedges)
-      {
-        list_face_halfedges_by_source(m_n, *m_triangles, false, m_ring_offsets, m_out, m_out_target, m_out_apex);
-        std::vector<Index>().swap(m_out_target);   // read from the faces (target_of_corner())
-      }
+        list_face_halfedges_by_source(m_n, *m_triangles, true, m_ring_offsets, m_out, m_out_target, m_out_apex);
       const std::size_t rows = m_has_halfedges ? m_mesh.out.size() : m_out.size();
       m_corner_twin.resize(rows);
       m_apex_matched.resize(rows);
@@ -233,18 +230,25 @@ private:
     // the halfedges list the corners where they are built (then the border halfedges, skipped)
     m_offs = m_has_halfedges ? m_mesh.out_offsets.data() : m_ring_offsets.data();
     m_outp = m_has_halfedges ? m_mesh.out.data() : m_out.data();
+    m_listed = !m_has_halfedges && m_out_apex.size() == m_out.size();
     m_h0 = static_cast<Index>(m_triangles->size());
   }
 
-  // the vertex after and the vertex before corner k in its face (read from the face array,
-  // whose face of the corner is at hand: no array of targets and apexes to keep)
+  // the vertex after and the vertex before corner k in its face: from the corner lists when
+  // they were listed with them (contiguous per ring: reading them from the face array was a
+  // fifth of a reconstruction's weight build), else from the face array (the decomposition,
+  // whose halfedges are reduced to save memory)
   Index target_of_corner(Index k) const
   {
+    if(m_listed)
+      return m_out_target[k];
     const Index h = m_outp[k];
     return (*m_triangles)[h % 3 == 2 ? h - 2 : h + 1];
   }
   Index apex_of_corner(Index k) const
   {
+    if(m_listed)
+      return m_out_apex[k];
     const Index h = m_outp[k];
     return (*m_triangles)[h % 3 == 0 ? h + 2 : h - 1];
   }
@@ -694,7 +698,7 @@ private:
 
   const std::vector<Index>* m_triangles = nullptr;
   std::size_t m_n = 0;
-  bool m_has_halfedges = false, m_has_corners = false, m_paired = false;
+  bool m_has_halfedges = false, m_has_corners = false, m_paired = false, m_listed = false;
   Triangle_halfedges m_mesh;
   // the corners around every vertex (corners()) and their pairing (match_ring())
   std::vector<Index> m_ring_offsets, m_out, m_out_target, m_out_apex, m_corner_twin;
