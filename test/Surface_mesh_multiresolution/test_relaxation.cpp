@@ -543,3 +543,83 @@ TEST_CASE("border rows hold exactly the border neighbours of every border vertex
       CHECK(border_vertices > 0);
     }
 }
+
+TEST_CASE("the three pairings of a ring's corners give the same weights, pinched vertices included", "[relaxation][corners]")
+{
+  // The 1-ring weights pair each corner with the corner across its edge in one of three ways:
+  // inside the ring from listed targets and apexes (relax(), reconstructions), inside the ring
+  // from the face array when the halfedges exist, and through the halfedges' twins (the
+  // decomposition). The rows (columns, order, bits) and their rules must be the same.
+  typedef SMR::internal::Index Index;
+  CGAL::Random rng(11);
+  std::vector<std::pair<std::size_t, std::vector<Index> > > cases;
+  {
+    // two closed umbrellas of 6 faces around vertex 0 (a pinched vertex), an open one of 40
+    // faces around vertex 13 (a long ring) glued to the first at vertex 1, and an open fan of
+    // 3 faces around 0 as well
+    std::vector<Index> F;
+    for(Index i = 0; i < 6; ++i) F.insert(F.end(), {0, 1 + i, 1 + (i + 1) % 6});
+    for(Index i = 0; i < 6; ++i) F.insert(F.end(), {0, 7 + i, 7 + (i + 1) % 6});
+    for(Index i = 0; i < 39; ++i) F.insert(F.end(), {13, 14 + i, 15 + i});
+    F.insert(F.end(), {13, 53, 1});
+    for(Index i = 0; i < 3; ++i) F.insert(F.end(), {0, 54 + i, 55 + i});
+    cases.emplace_back(58, F);
+  }
+  {
+    // a perturbed grid with a hole, its centre pinched to a corner of the hole
+    const Index s = 9;
+    std::vector<Index> F;
+    for(Index y = 0; y + 1 < s; ++y)
+      for(Index x = 0; x + 1 < s; ++x)
+      {
+        if(x >= 3 && x <= 4 && y >= 3 && y <= 4) continue;   // the hole
+        const Index a = y * s + x, b = a + 1, c = a + s, d = c + 1;
+        F.insert(F.end(), {a, b, d});
+        F.insert(F.end(), {a, d, c});
+      }
+    cases.emplace_back(std::size_t(s * s), F);
+  }
+  for(const auto& c : cases)
+  {
+    const std::size_t n = c.first;
+    const std::vector<Index>& F = c.second;
+    std::vector<double> xyz(3 * n);
+    for(std::size_t i = 0; i < n; ++i)
+    {
+      const double t = 6.283185307179586 * double(i) / double(n);
+      xyz[3 * i] = std::cos(t) * (1. + 0.1 * double(i % 7)) + rng.get_double(-0.05, 0.05);
+      xyz[3 * i + 1] = std::sin(t) * (1. + 0.1 * double(i % 5)) + rng.get_double(-0.05, 0.05);
+      xyz[3 * i + 2] = rng.get_double(-0.3, 0.3);
+    }
+    for(SMR::Relaxation_scheme scheme : {SMR::Relaxation_scheme::CURVATURE, SMR::Relaxation_scheme::UNIFORM})
+    {
+      SMR::internal::Sparse_weights w[3];
+      std::vector<SMR::Relaxation_row_rule> rules[3];
+      SMR::internal::Relaxation_weight_builder listed, from_faces, paired;
+      listed.set_connectivity(n, F);
+      listed.build(scheme, xyz.data(), nullptr, w[0], rules[0]);
+      from_faces.set_connectivity(n, F);
+      CHECK(!from_faces.connectivity().repeated_directed_edge);   // the halfedges now exist
+      from_faces.build(scheme, xyz.data(), nullptr, w[1], rules[1]);
+      paired.set_connectivity(n, F, true);
+      paired.pair_corners_from_halfedges();
+      paired.keep_outgoing_lists_only();
+      paired.build(scheme, xyz.data(), nullptr, w[2], rules[2]);
+      for(int k = 1; k < 3; ++k)
+      {
+        CHECK(w[k].offsets == w[0].offsets);
+        CHECK(w[k].columns == w[0].columns);
+        CHECK(w[k].values == w[0].values);
+        CHECK(rules[k] == rules[0]);
+      }
+      // the pinched vertex 0 of the first case: its row spans both umbrellas and the fan
+      if(n == 58)
+      {
+        std::set<Index> row(w[0].columns.begin() + w[0].offsets[0], w[0].columns.begin() + w[0].offsets[1]);
+        CHECK(rules[0][0] == SMR::Relaxation_row_rule::BORDER);   // the open fan puts it on a border
+        CHECK(row.count(54) == 1);
+        CHECK(row.count(57) == 1);
+      }
+    }
+  }
+}
