@@ -319,10 +319,11 @@ void take_greedily(const Triangle_halfedges& th, const double* xyz, const std::v
 // loop was the decomposition's largest sequential part. The candidates are decided a window
 // at a time by deterministic reservations (Blelloch, Fineman, Gibbons and Shun, "Internally
 // deterministic parallel algorithms can be fast", PPoPP 2012): in each round every undecided
-// candidate not yet blocked writes its position (atomic minimum) on the vertices it would
-// lock; one whose ends carry its own position has no undecided candidate before it that could
-// lock them, so it is decided now (tested, taken if valid); taken candidates then write their
-// position on the locks. Locks hold the smallest position of the candidates that took them,
+// candidate not yet blocked writes its position (atomic minimum) on its source o; one whose
+// closed 1-rings of o and e hold no smaller position has no undecided candidate before it
+// whose locks (its source's closed 1-ring) could reach its ends, so it is decided now (tested,
+// taken if valid); taken candidates then write their position on the locks of their source's
+// closed 1-ring. Locks hold the smallest position of the candidates that took them,
 // and a candidate is blocked only by a lock of a smaller position: what a later candidate
 // takes never changes an earlier one's decision. The earliest undecided candidate is decided
 // in every round. Same decisions as the loop for any number of threads (a test compares them),
@@ -395,43 +396,34 @@ void take_greedily_in_rounds(const Triangle_halfedges& th, const double* xyz, co
     {
       const std::size_t np = pending.size();
       state.assign(np, undecided);
-      parallel_for_blocks(np, [&](std::size_t first, std::size_t last) {
-        for(std::size_t i = first; i < last; ++i)
-        {
-          const Pending& c = pending[i];
-          if(lock[c.o].load(std::memory_order_relaxed) < c.p || lock[c.e].load(std::memory_order_relaxed) < c.p)
-            state[i] = blocked;
-          else
-            write_min(reserve[c.o], c.p);
-        }
-      }, grain);
-      parallel_for_blocks(np, [&](std::size_t first, std::size_t last) {
-        for(std::size_t i = first; i < last; ++i)
-        {
-          const Pending& c = pending[i];
-          if(state[i] == blocked)
-            continue;
-          bool ready = true;
-          auto first_here = [&](Index v) { ready = ready && reserve[v].load(std::memory_order_relaxed) >= c.p; };
-          for_closed_ring(c.o, first_here);
-          for_closed_ring(c.e, first_here);
-          if(!ready)
-            continue;
+      // one parallel pass over the pending candidates not blocked (f(i, candidate))
+      auto for_unblocked = [&](const auto& f) {
+        parallel_for_blocks(np, [&](std::size_t first, std::size_t last) {
+          for(std::size_t i = first; i < last; ++i)
+            if(state[i] != blocked)
+              f(i, pending[i]);
+        }, grain);
+      };
+      for_unblocked([&](std::size_t i, const Pending& c) {   // blocked by an earlier taken one, or reserves its source
+        if(lock[c.o].load(std::memory_order_relaxed) < c.p || lock[c.e].load(std::memory_order_relaxed) < c.p)
+          state[i] = blocked;
+        else
+          write_min(reserve[c.o], c.p);
+      });
+      for_unblocked([&](std::size_t i, const Pending& c) {   // decided when no earlier undecided source is near
+        bool ready = true;
+        auto first_here = [&](Index v) { ready = ready && reserve[v].load(std::memory_order_relaxed) >= c.p; };
+        for_closed_ring(c.o, first_here);
+        for_closed_ring(c.e, first_here);
+        if(ready)
           state[i] = satisfies_link_condition(th, c.h, c.o, c.e, on_border) && !does_collapse_flip_a_face(th, c.o, c.e, xyz)
                    ? taken : rejected;
-        }
-      }, grain);
-      parallel_for_blocks(np, [&](std::size_t first, std::size_t last) {
-        for(std::size_t i = first; i < last; ++i)
-        {
-          const Pending& c = pending[i];
-          if(state[i] == blocked)
-            continue;
-          reserve[c.o].store(none, std::memory_order_relaxed);
-          if(state[i] == taken)
-            for_closed_ring(c.o, [&](Index v) { write_min(lock[v], c.p); });
-        }
-      }, grain);
+      });
+      for_unblocked([&](std::size_t i, const Pending& c) {   // reservations cleared, locks taken
+        reserve[c.o].store(none, std::memory_order_relaxed);
+        if(state[i] == taken)
+          for_closed_ring(c.o, [&](Index v) { write_min(lock[v], c.p); });
+      });
       still.clear();
       for(std::size_t i = 0; i < np; ++i)
         if(state[i] == undecided)
