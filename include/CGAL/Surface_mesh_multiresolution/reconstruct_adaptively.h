@@ -183,7 +183,7 @@ inline double squared_distance_to_triangle(const double* p, const double* a, con
 // the fan and moves to its nearest fan face. Both ways: the centroids of the fan's faces are
 // measured against the star. `largest[k][q]`: the largest of these distances, how far the
 // collapse moves the surface from the input whichever vertex the input vertices were collapsed
-// into (the threshold's error); `summed[k][q]`: the order of a vertex budget, the root of the
+// into (the threshold's error); `ranking[k][q]`: the order of a vertex budget, the root of the
 // sum of the squared distances of the input vertices (each centroid counting for as many input
 // vertices as the star holds), the collapse's share of the RMS error, plus 64 times the square
 // of the largest. Measured (bench_quality, 8 meshes at 25 / 5 / 1 %): the sum alone gives
@@ -195,7 +195,7 @@ inline double squared_distance_to_triangle(const double* p, const double* a, con
 // input vertices are measured in parallel, each about 0.6 times per level.
 template <typename TriangleMesh>
 void approximation_errors(const Pyramid<TriangleMesh>& pyr, const Adaptive_hierarchy& h,
-                          std::vector<std::vector<double> >& largest, std::vector<std::vector<double> >& summed)
+                          std::vector<std::vector<double> >& largest, std::vector<std::vector<double> >& ranking)
 {
   const std::size_t K = pyr.number_of_levels(), n0 = pyr.number_of_input_vertices();
   std::vector<std::vector<double> > values;
@@ -238,7 +238,7 @@ void approximation_errors(const Pyramid<TriangleMesh>& pyr, const Adaptive_hiera
   std::vector<double> moved(n0);
   std::vector<Index> by(n0);
   largest.assign(K, std::vector<double>());
-  summed.assign(K, std::vector<double>());
+  ranking.assign(K, std::vector<double>());
   for(std::size_t k = 0; k < K; ++k)
   {
     const Pyramid_level& lev = pyr.levels()[k];
@@ -268,7 +268,7 @@ void approximation_errors(const Pyramid<TriangleMesh>& pyr, const Adaptive_hiera
     }, 4096);
     const std::size_t n_odd = lev.odd_rows.size();
     std::vector<double>& worst = largest[k];
-    std::vector<double>& sum = summed[k];
+    std::vector<double>& sum = ranking[k];
     worst.assign(n_odd, 0.);
     sum.assign(n_odd, 0.);
     std::vector<double> points(n_odd, 0.);
