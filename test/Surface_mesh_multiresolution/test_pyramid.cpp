@@ -944,6 +944,46 @@ TEST_CASE("Triangle_halfedges pairs the halfedges of the mesh, also when a direc
   CHECK(!long_ring.has_face(long_ring.twin[3 * 40]));        // the second gets a border twin
 }
 
+TEST_CASE("the corners listed by source in parallel ranges are those of the sequential counting sort", "[pyramid][halfedges]")
+{
+  typedef SMR::internal::Index Index;
+  // random faces over 20,000 vertices (several per vertex, any order): 300,000 corners
+  CGAL::Random rng(3);
+  const std::size_t n = 20000;
+  std::vector<Index> tri;
+  for(int f = 0; f < 100000; ++f)
+    for(int c = 0; c < 3; ++c)
+      tri.push_back(static_cast<Index>(rng.get_int(0, int(n))));
+  std::vector<Index> offsets, out, target, apex;
+  SMR::internal::list_face_halfedges_by_source(n, tri, true, offsets, out, target, apex);
+  // the reference: corners in increasing halfedge number within each source
+  REQUIRE(offsets.size() == n + 1);
+  REQUIRE(out.size() == tri.size());
+  std::vector<Index> next(n, 0);
+  for(Index h = 0; h < tri.size(); ++h)
+  {
+    const Index v = tri[h], k = offsets[v] + next[v]++;
+    REQUIRE(k < offsets[v + 1]);
+    CHECK(out[k] == h);
+    CHECK(target[k] == tri[SMR::internal::Triangle_halfedges::next_in_face(h)]);
+    CHECK(apex[k] == tri[SMR::internal::Triangle_halfedges::next_in_face(SMR::internal::Triangle_halfedges::next_in_face(h))]);
+  }
+  for(std::size_t v = 0; v < n; ++v)
+    CHECK(offsets[v] + next[v] == offsets[v + 1]);
+#ifdef CGAL_LINKED_WITH_TBB
+  for(int threads : {3, 8})   // other numbers of ranges: the same lists
+  {
+    tbb::task_arena arena(threads);
+    std::vector<Index> o2, out2, t2, a2;
+    arena.execute([&] { SMR::internal::list_face_halfedges_by_source(n, tri, true, o2, out2, t2, a2); });
+    CHECK(o2 == offsets);
+    CHECK(out2 == out);
+    CHECK(t2 == target);
+    CHECK(a2 == apex);
+  }
+#endif
+}
+
 TEST_CASE("the look-ahead greedy selection and its parallel rounds take the collapses of the plain greedy loop", "[pyramid][cost]")
 {
   typedef SMR::internal::Index Index;

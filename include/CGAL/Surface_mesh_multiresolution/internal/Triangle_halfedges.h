@@ -26,29 +26,48 @@ namespace internal {
 // f) listed by source in CSR, by a counting sort, so in face order: the corners around every
 // vertex, with the vertex after each corner in its face (out_target) and, `with_apexes`, the
 // vertex before it (out_apex). A vertex's row is out[offsets[v]] .. out[offsets[v + 1] - 1].
+// In parallel over ranges of source vertices: each range's task reads the whole face array
+// (a stream) and counts, then writes, only the corners of its sources, in face order, so the
+// lists are those of the sequential sort for any number of tasks (no atomics; with one
+// histogram per task the memory would grow with the tasks times the vertices).
 inline void list_face_halfedges_by_source(std::size_t n, const std::vector<Index>& tri, bool with_apexes,
                                           std::vector<Index>& offsets, std::vector<Index>& out,
                                           std::vector<Index>& out_target, std::vector<Index>& out_apex)
 {
   const Index h0 = static_cast<Index>(tri.size());
+  // a range per thread (at most 8: each reads all corners), one more per 2^15 corners
+  const std::size_t ranges = (std::min)({std::size_t(available_threads()), std::size_t(8), std::size_t(h0 >> 15) + 1});
+  auto for_ranges = [&](const auto& f) {
+    parallel_for_blocks(ranges, [&](std::size_t first, std::size_t last) {
+      for(std::size_t r = first; r < last; ++r)
+        f(static_cast<Index>(n * r / ranges), static_cast<Index>(n * (r + 1) / ranges - n * r / ranges));
+    }, 1);
+  };
   offsets.assign(n + 1, 0);
-  for(Index h = 0; h < h0; ++h)
-    ++offsets[tri[h] + 1];
+  for_ranges([&](Index lo, Index span) {
+    for(Index h = 0; h < h0; ++h)
+      if(tri[h] - lo < span)                               // (unsigned: below lo wraps around)
+        ++offsets[tri[h] + 1];
+  });
   for(std::size_t i = 0; i < n; ++i)
     offsets[i + 1] += offsets[i];
   out.resize(h0);
   out_target.resize(h0);
   out_apex.resize(with_apexes ? h0 : 0);
   std::vector<Index> fill(offsets.begin(), offsets.end() - 1);
-  for(Index h = 0; h < h0; ++h)
-  {
-    const Index k = fill[tri[h]]++;
-    const Index next = h % 3 == 2 ? h - 2 : h + 1;
-    out[k] = h;
-    out_target[k] = tri[next];
-    if(with_apexes)
-      out_apex[k] = tri[next % 3 == 2 ? next - 2 : next + 1];
-  }
+  for_ranges([&](Index lo, Index span) {
+    for(Index h = 0; h < h0; ++h)
+    {
+      if(tri[h] - lo >= span)
+        continue;
+      const Index k = fill[tri[h]]++;
+      const Index next = h % 3 == 2 ? h - 2 : h + 1;
+      out[k] = h;
+      out_target[k] = tri[next];
+      if(with_apexes)
+        out_apex[k] = tri[next % 3 == 2 ? next - 2 : next + 1];
+    }
+  });
 }
 
 // Index-based halfedge structure of a triangle mesh, built from its triangle array alone
