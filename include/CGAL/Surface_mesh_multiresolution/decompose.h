@@ -160,8 +160,7 @@ private:
 
   void move_to_next_level(const Pyramid_level& level)
   {
-    for(const Collapse& c : m_accepted)
-      m_cost.collapse(c.o, c.e);
+    m_cost.collapse_all(m_accepted);
     m_cost.end_level(m_is_odd);
     std::vector<Index> next_row(rows(), invalid_index);
     for(std::size_t j = 0; j < level.even_rows.size(); ++j)

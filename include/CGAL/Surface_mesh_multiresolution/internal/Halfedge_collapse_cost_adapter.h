@@ -175,6 +175,14 @@ public:
     m_adapter->after_collapse(kept);
   }
 
+  // a level's accepted collapses, in order (each edits the working copy)
+  template <typename Collapses>
+  void collapse_all(const Collapses& accepted)
+  {
+    for(const auto& c : accepted)
+      collapse(c.o, c.e);
+  }
+
 private:
   halfedge_descriptor work_halfedge(Index o, Index e) const
   {

@@ -10,6 +10,7 @@
 
 #include <CGAL/Surface_mesh_multiresolution/internal/config.h>
 #include <CGAL/Surface_mesh_multiresolution/internal/indexed_mesh.h>
+#include <CGAL/Surface_mesh_multiresolution/internal/parallel.h>
 #include <CGAL/Surface_mesh_multiresolution/internal/Triangle_halfedges.h>
 
 #include <cmath>
@@ -102,20 +103,20 @@ public:
   }
 
   // keeps the quadrics of the rows for which keep(row) holds, in order: the rows of the next
-  // level (the memory follows the level's size)
+  // level (the memory follows the level's size; gathered in parallel into a vector of that size)
   template <typename Keep>
   void retain(std::size_t rows, const Keep& keep)
   {
-    std::size_t next = 0;
+    std::vector<Index> kept;
     for(std::size_t r = 0; r < rows; ++r)
       if(keep(r))
-      {
-        if(next != r)
-          std::copy(m_q.begin() + size * r, m_q.begin() + size * (r + 1), m_q.begin() + size * next);
-        ++next;
-      }
-    m_q.resize(size * next);
-    m_q.shrink_to_fit();
+        kept.push_back(static_cast<Index>(r));
+    std::vector<double> q(size * kept.size());
+    parallel_for_blocks(kept.size(), [&](std::size_t first, std::size_t last) {
+      for(std::size_t j = first; j < last; ++j)
+        std::copy(m_q.begin() + size * kept[j], m_q.begin() + size * (kept[j] + 1), q.begin() + size * j);
+    });
+    m_q.swap(q);
   }
 
   // x^T Q x for the homogeneous point (x, 1)

@@ -11,6 +11,7 @@
 #include <CGAL/Surface_mesh_multiresolution/internal/config.h>
 #include <CGAL/Surface_mesh_multiresolution/internal/Halfedge_collapse_cost_adapter.h>
 #include <CGAL/Surface_mesh_multiresolution/internal/indexed_mesh.h>
+#include <CGAL/Surface_mesh_multiresolution/internal/parallel.h>
 #include <CGAL/Surface_mesh_multiresolution/internal/Plane_quadrics.h>
 #include <CGAL/Surface_mesh_multiresolution/internal/Triangle_halfedges.h>
 
@@ -33,6 +34,7 @@ namespace internal {
 //   cost(o, e)                                              Optional<double>: the cost of
 //                                                           moving row o onto row e (empty: refused)
 //   collapse(o, e)                                          an accepted collapse
+//   collapse_all(accepted)                                  a level's accepted collapses ({o, e} each)
 //   end_level(is_odd)                                       one flag per row of M_k: the rows
 //                                                           removed; the next level's rows
 //                                                           are the others, in order
@@ -56,6 +58,18 @@ struct Plane_quadric_collapse_cost : Plane_quadrics
                               const GeomTraits&, const UserCost&) {}
 
   void begin_level(const std::vector<Index>&, const std::vector<double>& xyz) { Plane_quadrics::begin_level(xyz); }
+
+  // Q_e += Q_o for a level's accepted collapses, in parallel: the selection locks the closed
+  // 1-ring of each source, so no target is taken twice nor is any source's, and each sum is
+  // the one of the sequential loop
+  template <typename Collapses>
+  void collapse_all(const Collapses& accepted)
+  {
+    parallel_for_blocks(accepted.size(), [&](std::size_t first, std::size_t last) {
+      for(std::size_t i = first; i < last; ++i)
+        collapse(accepted[i].o, accepted[i].e);
+    });
+  }
 
   // the quadrics of the rows that stay, by row of the next level
   void end_level(const std::vector<unsigned char>& is_odd)
