@@ -308,8 +308,10 @@ private:
     // the rows widened one array at a time (a copy of a single array beside them at the peak)
     auto widen = [&](std::vector<Index>& a, Index filler) {
       std::vector<Index> wide(nh, filler);
-      for(std::size_t i = 0; i < n; ++i)
-        std::copy(a.begin() + face_off[i], a.begin() + face_off[i + 1], wide.begin() + out_offsets[i]);
+      parallel_for_blocks(n, [&](std::size_t first, std::size_t last) {
+        for(std::size_t i = first; i < last; ++i)
+          std::copy(a.begin() + face_off[i], a.begin() + face_off[i + 1], wide.begin() + out_offsets[i]);
+      });
       a.swap(wide);
     };
     widen(out, 0);
