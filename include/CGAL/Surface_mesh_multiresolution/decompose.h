@@ -223,7 +223,7 @@ void Decomposition<TriangleMesh, CostModel, Visitor>::collapse_face_array(Pyrami
   // which no other collapse renames)
   auto holds_target = [&](Index q, Index e) {
     const Index h = th.out[q];
-    return m_faces[h % 3 == 2 ? h - 2 : h + 1] == e || m_faces[h % 3 == 0 ? h + 2 : h - 1] == e;
+    return m_faces[Triangle_halfedges::next_in_face(h)] == e || m_faces[Triangle_halfedges::prev_in_face(h)] == e;
   };
   parallel_for_blocks(na, [&](std::size_t first, std::size_t last) {
     for(std::size_t i = first; i < last; ++i)

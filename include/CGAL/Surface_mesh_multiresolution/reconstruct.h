@@ -90,7 +90,7 @@ inline Index same_fan_border_halfedge(const Triangle_halfedges& th, Index g)
   Index h = th.twin[g];                                      // out of v, in a face
   for(std::size_t turns = 0; turns <= th.source.size(); ++turns)
   {
-    const Index into_v = h % 3 == 0 ? h + 2 : h - 1;         // the halfedge before h in its face
+    const Index into_v = Triangle_halfedges::prev_in_face(h);   // the halfedge before h in its face
     const Index t = th.twin[into_v];
     if(!th.has_face(t))
       return t;

@@ -99,6 +99,7 @@ private:
 public:
 
   static Index next_in_face(Index h) { return h % 3 == 2 ? h - 2 : h + 1; }
+  static Index prev_in_face(Index h) { return h % 3 == 0 ? h + 2 : h - 1; }
   bool has_face(Index h) const { return h < 3 * nf; }
   bool is_border_edge(Index h) const { return !has_face(h) || !has_face(twin[h]); }
   // the third vertex of the face of h (h must have a face)
@@ -222,26 +223,23 @@ private:
       bool repeated = false;
       for(std::size_t a = first; a < last; ++a)
       {
+        repeated = repeated || ring_repeats_a_target(static_cast<Index>(a));
         const Index begin = offsets[a], end = offsets[a + 1];
         if(apexes && end - begin <= long_ring)
         {
           for(Index k = begin; k != end; ++k)
           {
             const Index b = targets[k];
-            repeated |= (b == a);
-            for(Index j = begin; j != k; ++j)
-              repeated |= (targets[j] == b);
+            repeated = repeated || b == a;
             for(Index q = begin; q != end; ++q)
               if(apex[q] == b)
               {
-                const Index g = halfedges[q];
-                twins[halfedges[k]] = g % 3 == 0 ? g + 2 : g - 1;   // the halfedge b -> a of that face
+                twins[halfedges[k]] = prev_in_face(halfedges[q]);   // the halfedge b -> a of that face
                 break;
               }
           }
           continue;
         }
-        repeated = repeated || ring_repeats_a_target(static_cast<Index>(a));
         for(Index k = begin; k != end; ++k)
         {
           const Index b = out_target[k];

@@ -119,7 +119,7 @@ public:
         {
           const Index h = m_outp[k], into = th.twin[h];   // i -> a, a -> i
           m_corner_twin[k] = th.has_face(into) ? Triangle_halfedges::next_in_face(into) : invalid_index;
-          const Index from = th.twin[h % 3 == 0 ? h + 2 : h - 1];   // i -> b, twin of the corner's b -> i
+          const Index from = th.twin[Triangle_halfedges::prev_in_face(h)];   // i -> b, twin of the corner's b -> i
           m_apex_matched[k] = th.has_face(from) ? 1 : 0;
         }
     });
@@ -242,15 +242,13 @@ private:
   {
     if(m_listed)
       return m_out_target[k];
-    const Index h = m_outp[k];
-    return (*m_triangles)[h % 3 == 2 ? h - 2 : h + 1];
+    return (*m_triangles)[Triangle_halfedges::next_in_face(m_outp[k])];
   }
   Index apex_of_corner(Index k) const
   {
     if(m_listed)
       return m_out_apex[k];
-    const Index h = m_outp[k];
-    return (*m_triangles)[h % 3 == 0 ? h + 2 : h - 1];
+    return (*m_triangles)[Triangle_halfedges::prev_in_face(m_outp[k])];
   }
 
   // the end of vertex i's corners (a row of the halfedges ends with its border halfedges)
@@ -417,7 +415,7 @@ private:
     {
       const Index into_i = m_corner_twin[k];   // i -> b in the twin's face: its previous halfedge is a -> i
       col[k - b] = target_of_corner(k);
-      val[k - b] = m_cotangent[m_outp[k]] + m_cotangent[into_i % 3 == 0 ? into_i + 2 : into_i - 1];
+      val[k - b] = m_cotangent[m_outp[k]] + m_cotangent[Triangle_halfedges::prev_in_face(into_i)];
     }
     return normalised_curvature_row(e - b, val);
   }
