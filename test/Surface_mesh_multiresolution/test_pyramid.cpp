@@ -779,8 +779,9 @@ TEST_CASE("the candidates' radix sort orders by (cost, halfedge) like a comparis
     if(trial % 2 == 1 || trial == 6)   // the input order does not matter
       std::shuffle(c.begin(), c.end(), std::mt19937(trial));
     auto cost = [&](SMR::internal::Index h) { return cost_of[h]; };
-    // the front of move_cheapest_first() (refused keys mixed in) is a true prefix of the order:
-    // sorting it and the rest apart gives the full order, and it holds at least the wanted keys
+    // the front of cheapest_keys() (refused keys mixed in) is a true prefix of the order:
+    // sorting it and the rest (keys_above()) apart gives the full order, and it holds at least
+    // the wanted keys
     constexpr std::uint64_t refused = ~std::uint64_t(0);
     for(std::size_t wanted : {std::size_t(0), std::size_t(1), cost_of.size() / 7, cost_of.size() / 2, cost_of.size()})
     {
@@ -791,14 +792,20 @@ TEST_CASE("the candidates' radix sort orders by (cost, halfedge) like a comparis
           m.push_back(refused);
         m.push_back(c[i]);
       }
-      const std::size_t front = SMR::internal::move_cheapest_first(m, key, refused, wanted);
-      REQUIRE(m.size() == c.size());
-      CHECK(front >= (std::min)(wanted, c.size()));
-      CHECK(front <= m.size());
-      SMR::internal::sort_candidates(m.data(), front, key, cost);
-      SMR::internal::sort_candidates(m.data() + front, m.size() - front, key, cost);
-      for(std::size_t i = 0; i < m.size(); ++i)
-        REQUIRE(key.halfedge(m[i]) == expected[i]);
+      std::size_t total = 0;
+      std::uint64_t limit = 0;
+      std::vector<std::uint64_t> front = SMR::internal::cheapest_keys(m, key, refused, wanted, total, limit);
+      CHECK(total == c.size());
+      CHECK(front.size() >= (std::min)(wanted, c.size()));
+      for(std::uint64_t x : front)
+        REQUIRE(key.leading_bits(x) <= limit);
+      SMR::internal::keys_above(m, key, refused, limit);
+      REQUIRE(front.size() + m.size() == c.size());
+      SMR::internal::sort_candidates(front.data(), front.size(), key, cost);
+      SMR::internal::sort_candidates(m.data(), m.size(), key, cost);
+      front.insert(front.end(), m.begin(), m.end());
+      for(std::size_t i = 0; i < front.size(); ++i)
+        REQUIRE(key.halfedge(front[i]) == expected[i]);
     }
     SMR::internal::sort_candidates(c.data(), c.size(), key, cost);
     REQUIRE(c.size() == expected.size());

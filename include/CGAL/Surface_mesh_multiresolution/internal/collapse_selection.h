@@ -126,6 +126,9 @@ public:
     return ((b >> (64 - m_cost_bits)) << m_halfedge_bits) | h;
   }
   Index halfedge(std::uint64_t key) const { return static_cast<Index>(key & ((std::uint64_t(1) << m_halfedge_bits) - 1)); }
+  // the leading 24 bits of a key (of its cost bits: at least 32), which cheapest_keys() selects on
+  int leading_bits_shift() const { return m_cost_bits + m_halfedge_bits - 24; }
+  std::uint64_t leading_bits(std::uint64_t key) const { return key >> leading_bits_shift(); }
   std::uint64_t cost_part(std::uint64_t key) const { return key >> m_halfedge_bits; }
   int halfedge_bits() const { return m_halfedge_bits; }
   int cost_bits() const { return m_cost_bits; }
@@ -200,34 +203,66 @@ void sort_candidates(std::uint64_t* c, std::size_t n, const Candidate_key& key, 
   if(from != c)
     std::copy(from, from + n, c);
   scratch = std::vector<std::uint64_t>();
-  std::vector<std::pair<double, Index> > run;
-  for(std::size_t i = 0; i < n;)
-  {
-    std::size_t j = i + 1;
-    while(j < n && key.cost_part(c[j]) == key.cost_part(c[i]))
-      ++j;
-    if(j - i > 1)
+  // Runs of equal cost bits are ordered by their exact costs, then halfedges. They are not rare
+  // everywhere: the symmetric stencils of a subdivided mesh make exact ties common (6 of the
+  // 19 million keys sorted while decomposing a Loop-subdivided horse of 3.1M vertices lie in
+  // runs, a seventh of that decomposition when recomputed one run at a time). In parallel over
+  // fixed blocks, each owning the runs that start in it (found before anything is written);
+  // a block first recomputes the costs of all its runs' keys in one loop, independent calls
+  // whose cache misses overlap, then sorts each run. Every run is sorted whole by one task.
+  constexpr std::size_t run_block = std::size_t(1) << 15;
+  const std::size_t run_blocks = (n + run_block - 1) / run_block;
+  std::vector<std::size_t> run_start(run_blocks + 1, n);
+  parallel_for_blocks(run_blocks, [&](std::size_t first, std::size_t last) {
+    for(std::size_t b = first; b < last; ++b)
     {
-      run.clear();
-      for(std::size_t q = i; q < j; ++q)
-      {
-        const Index h = key.halfedge(c[q]);
-        run.emplace_back(cost(h), h);
-      }
-      std::sort(run.begin(), run.end());                  // (cost, h): equal costs keep increasing h
-      for(std::size_t q = i; q < j; ++q)
-        c[q] = (key.cost_part(c[q]) << key.halfedge_bits()) | run[q - i].second;
+      std::size_t i = b * run_block;
+      while(i > 0 && i < n && key.cost_part(c[i]) == key.cost_part(c[i - 1]))
+        ++i;
+      run_start[b] = i;
     }
-    i = j;
-  }
+  }, 1);
+  parallel_for_blocks(run_blocks, [&](std::size_t first, std::size_t last) {
+    std::vector<std::pair<double, Index> > members;
+    std::vector<std::size_t> runs;                          // begin and end of each run, in c
+    for(std::size_t b = first; b < last; ++b)
+    {
+      members.clear();
+      runs.clear();
+      for(std::size_t i = run_start[b], end = run_start[b + 1]; i < end;)
+      {
+        std::size_t j = i + 1;
+        while(j < end && key.cost_part(c[j]) == key.cost_part(c[i]))
+          ++j;
+        if(j - i > 1)
+        {
+          runs.push_back(i);
+          runs.push_back(j);
+          for(std::size_t q = i; q < j; ++q)
+            members.emplace_back(0., key.halfedge(c[q]));
+        }
+        i = j;
+      }
+      for(std::pair<double, Index>& m : members)
+        m.first = cost(m.second);
+      for(std::size_t r = 0, m = 0; r < runs.size(); r += 2)
+      {
+        const std::size_t i = runs[r], j = runs[r + 1];
+        std::sort(members.begin() + m, members.begin() + m + (j - i));   // (cost, h): equal costs keep increasing h
+        for(std::size_t q = i; q < j; ++q, ++m)
+          c[q] = (key.cost_part(c[q]) << key.halfedge_bits()) | members[m].second;
+      }
+    }
+  }, 1);
 }
 
 // The selection loop of select_collapses(): candidates in order, each accepted if its ends are
 // free and its collapse valid; the first `considered` candidates, more (half as many again
-// each time) while fewer than `minimum` are accepted.
+// each time) while fewer than `minimum` are accepted. `candidates` holds the first `sorted` of
+// the `all` candidates in order; sort_rest() appends the others, in order, when they are needed.
 template <typename SortRest>
 void take_greedily(const Triangle_halfedges& th, const double* xyz, const std::vector<std::uint64_t>& candidates,
-                   std::size_t sorted, const SortRest& sort_rest, const Candidate_key& key, std::size_t budget,
+                   std::size_t sorted, std::size_t all, const SortRest& sort_rest, const Candidate_key& key, std::size_t budget,
                    const std::vector<unsigned char>& on_border, std::vector<unsigned char>& locked,
                    std::vector<Collapse>& accepted, std::size_t considered, std::size_t minimum)
 {
@@ -242,7 +277,6 @@ void take_greedily(const Triangle_halfedges& th, const double* xyz, const std::v
   constexpr std::size_t window = 16, ring_step = window / 2, position_step = 3, gather_ahead = 32;
   Pending pending[window];
   std::size_t head = 0, count = 0, scan = 0;
-  const std::size_t all = candidates.size();
   std::size_t nc = (std::min)(all, considered);
   if(nc > sorted)
   {
@@ -330,7 +364,7 @@ void take_greedily(const Triangle_halfedges& th, const double* xyz, const std::v
 // the same tests made (only candidates whose ends are free at their turn are tested).
 template <typename SortRest>
 void take_greedily_in_rounds(const Triangle_halfedges& th, const double* xyz, const std::vector<std::uint64_t>& candidates,
-                             std::size_t sorted, const SortRest& sort_rest, const Candidate_key& key, std::size_t budget,
+                             std::size_t sorted, std::size_t all, const SortRest& sort_rest, const Candidate_key& key, std::size_t budget,
                              const std::vector<unsigned char>& on_border, std::vector<Collapse>& accepted,
                              std::size_t considered, std::size_t minimum, std::size_t window)
 {
@@ -358,7 +392,6 @@ void take_greedily_in_rounds(const Triangle_halfedges& th, const double* xyz, co
   std::vector<Pending> pending, still;
   std::vector<unsigned char> state;
   std::vector<Pending> taken_here;
-  const std::size_t all = candidates.size();
   std::size_t nc = (std::min)(all, considered), scan = 0;
   if(nc > sorted)
   {
@@ -449,24 +482,26 @@ double candidate_cost(const Triangle_halfedges& th, const CostOfRows& cost, cons
   return oc ? *oc : std::numeric_limits<double>::quiet_NaN();
 }
 
-// Moves the cheapest candidate keys to the front of `c` and drops the `refused` ones; returns
-// the length of that front: the keys whose leading 24 cost bits are at most those of the
-// wanted-th cheapest key (all keys when wanted is at least half of them). The front is a true
-// prefix of the sorted order, runs of equal cost bits included, whatever the order inside it.
-// Why by hand: std::nth_element over the 6 n candidates was sequential (10 % of the dragon's
-// decomposition on two threads); this is a radix select (two histograms of 12-bit digits in
-// fixed blocks, then a scatter of the front in block order), parallel and deterministic. The
-// rest keeps its input order (compacted in place, no copy of the candidates at level 0's peak).
-inline std::size_t move_cheapest_first(std::vector<std::uint64_t>& c, const Candidate_key& key, std::uint64_t refused,
-                                       std::size_t wanted)
+// The cheapest candidate keys of `c`, in their order in `c`, without the `refused` ones: the
+// keys whose leading 24 bits (Candidate_key::leading_bits()) are at most `limit`, which is
+// those of the wanted-th cheapest key (all keys, limit = ~0, when wanted is at least half of
+// them; `c` is then emptied). A true prefix of the sorted order, runs of equal cost bits
+// included, whatever the order inside it; `total`: the number of keys not refused. The other
+// keys stay in `c` (keys_above() extracts them). Why by hand: std::nth_element over the 6 n
+// candidates was sequential (10 % of the dragon's decomposition on two threads); this is a
+// radix select (two histograms of 12-bit digits in fixed blocks, then a scatter of the front in
+// block order), parallel and deterministic. The front is a new array of about n keys, `c` is
+// left as it is (compacting the rest in place and moving the front before it were sequential
+// passes over the 6 n keys: a third of the select's time).
+inline std::vector<std::uint64_t> cheapest_keys(std::vector<std::uint64_t>& c, const Candidate_key& key, std::uint64_t refused,
+                                                std::size_t wanted, std::size_t& total, std::uint64_t& limit)
 {
   const std::size_t n = c.size();
   constexpr int digit_bits = 12;
   constexpr std::size_t buckets = std::size_t(1) << digit_bits;
   constexpr std::size_t block = std::size_t(1) << 18;
   const std::size_t blocks = (n + block - 1) / block;
-  const int used = key.cost_bits() + key.halfedge_bits();      // key bits in use (refused: all 64)
-  const int shift1 = used - digit_bits, shift2 = (std::max)(key.halfedge_bits(), used - 2 * digit_bits);
+  const int shift2 = key.leading_bits_shift(), shift1 = shift2 + digit_bits;   // the two digits of the leading bits
   const std::uint64_t mask = buckets - 1;
   std::vector<std::size_t> hist1(blocks * buckets), hist2(blocks * buckets), kept(blocks);
   auto for_blocks = [&](const auto& f) {
@@ -482,16 +517,16 @@ inline std::size_t move_cheapest_first(std::vector<std::uint64_t>& c, const Cand
       if(c[i] != refused) { ++h[(c[i] >> shift1) & mask]; ++k; }
     kept[b] = k;
   });
-  std::size_t total = 0;
+  total = 0;
   for(std::size_t k : kept)
     total += k;
-  auto compact_in_place = [&] {                                 // stable: the keys' order kept
-    c.erase(std::remove(c.begin(), c.end(), refused), c.end());
-  };
   if(2 * (std::max)(wanted, std::size_t(1)) >= total)
   {
-    compact_in_place();
-    return c.size();
+    limit = ~std::uint64_t(0);
+    c.erase(std::remove(c.begin(), c.end(), refused), c.end());   // stable: the keys' order kept
+    std::vector<std::uint64_t> all;
+    all.swap(c);
+    return all;
   }
   // the bucket of the wanted-th key (1-based), first by the leading digit, then by the next
   auto bucket_of_rank = [&](const std::vector<std::size_t>& hist, std::size_t rank, std::size_t& before) {
@@ -516,11 +551,7 @@ inline std::size_t move_cheapest_first(std::vector<std::uint64_t>& c, const Cand
         ++h[(c[i] >> shift2) & mask];
   });
   const std::uint64_t d2 = bucket_of_rank(hist2, rank, below);
-  // in the front: leading digit below d1, or d1 and second digit at most d2
-  auto in_front = [&](std::uint64_t x) {
-    const std::uint64_t a = (x >> shift1) & mask;
-    return x != refused && (a < d1 || (a == d1 && ((x >> shift2) & mask) <= d2));
-  };
+  limit = (d1 << digit_bits) | d2;
   std::vector<std::size_t> offset(blocks + 1, 0);
   for(std::size_t b = 0; b < blocks; ++b)
   {
@@ -531,74 +562,89 @@ inline std::size_t move_cheapest_first(std::vector<std::uint64_t>& c, const Cand
       in += hist2[b * buckets + v];
     offset[b + 1] = offset[b] + in;
   }
-  const std::size_t front = offset[blocks];
-  std::vector<std::uint64_t> first_keys(front);
+  std::vector<std::uint64_t> front(offset[blocks]);
   for_blocks([&](std::size_t b, std::size_t first, std::size_t last) {
     std::size_t w = offset[b];
     for(std::size_t i = first; i < last; ++i)
-      if(in_front(c[i]))
-        first_keys[w++] = c[i];
+      if(c[i] != refused && key.leading_bits(c[i]) <= limit)
+        front[w++] = c[i];
   });
-  // the rest, compacted towards the end in its order (written from the back: never over an unread key)
-  std::size_t w = n;
-  for(std::size_t i = n; i-- > 0;)
-    if(c[i] != refused && !in_front(c[i]))
-      c[--w] = c[i];
-  const std::size_t start = w - front;
-  std::copy(first_keys.begin(), first_keys.end(), c.begin() + start);
-  c.erase(c.begin(), c.begin() + start);
   return front;
 }
 
-// The candidate collapses of one level, sorted: every halfedge o -> e of M_k, except those
-// that would move a border vertex off the border and those the cost model refuses, in
-// increasing cost (ties: halfedge number, so the order is total and the result does not depend
-// on threads). Keys computed in parallel (TBB), vertex by vertex (the quadric and position of
-// o are read once for its 1-ring, those of its neighbours are near in memory), each into its
-// own slot. on_border: one flag per row, set here.
-template <typename CostOfRows>
-std::vector<std::uint64_t> sorted_candidates(const Triangle_halfedges& th, const CostOfRows& cost,
-                                             std::vector<unsigned char>& on_border, Candidate_key& key,
-                                             std::size_t wanted, std::size_t& sorted)
+// Keeps in `c`, in their order, the keys past the front of cheapest_keys() (leading bits above
+// `limit`, refused keys left out).
+inline void keys_above(std::vector<std::uint64_t>& c, const Candidate_key& key, std::uint64_t refused, std::uint64_t limit)
 {
-  const Index nh = static_cast<Index>(th.source.size());
-  on_border.assign(th.n, 0);
-  for(Index h = static_cast<Index>(3 * th.nf); h < nh; ++h)   // the border halfedges come last
-    on_border[th.source[h]] = on_border[th.target[h]] = 1;
-  auto cost_of_edge = [&](Index h, Index o, Index e) { return candidate_cost(th, cost, on_border, h, o, e); };
-  key = Candidate_key(nh);
-  constexpr std::uint64_t refused = ~std::uint64_t(0);     // no key: its cost bits would be a NaN's
-  std::vector<std::uint64_t> candidates(nh);
+  c.erase(std::remove_if(c.begin(), c.end(), [&](std::uint64_t x) { return x == refused || key.leading_bits(x) <= limit; }),
+          c.end());
+}
+
+// The keys of the candidate collapses of one level, every halfedge o -> e of M_k in the order
+// of the vertices' lists of outgoing halfedges, `refused` for those that would move a border
+// vertex off the border and those the cost model refuses. Computed in parallel (TBB), vertex
+// by vertex (the quadric and position of o are read once for its 1-ring, those of its
+// neighbours are near in memory), each into its own slot.
+template <typename CostOfRows>
+std::vector<std::uint64_t> candidate_keys(const Triangle_halfedges& th, const CostOfRows& cost,
+                                          const std::vector<unsigned char>& on_border, const Candidate_key& key,
+                                          std::uint64_t refused)
+{
+  std::vector<std::uint64_t> candidates(th.source.size());
   parallel_for_blocks(th.n, [&](std::size_t first, std::size_t last) {
     for(std::size_t o = first; o < last; ++o)
       for(Index k = th.out_offsets[o]; k < th.out_offsets[o + 1]; ++k)
       {
         const Index h = th.out[k];
-        const double c = cost_of_edge(h, static_cast<Index>(o), th.out_target[k]);
+        const double c = candidate_cost(th, cost, on_border, h, static_cast<Index>(o), th.out_target[k]);
         candidates[k] = std::isnan(c) ? refused : key(c, h);
       }
   }, 1024);
-  // Only the cheapest `wanted` are sorted (the level considers them first; of about 6 n
-  // candidates it takes n), with every candidate that shares their largest leading cost bits
-  // (the exact costs order runs of equal cost bits): a true prefix of the full order; the rest
-  // is sorted if ever needed (sort_candidate_rest). Dragon: 18 % of a decomposition in the sort
-  // before the partial sort; its std::nth_element then took 10 % on two threads, sequential.
-  auto exact_cost = [&](Index h) { return cost_of_edge(h, th.source[h], th.target[h]); };
-  sorted = move_cheapest_first(candidates, key, refused, wanted);
-  sort_candidates(candidates.data(), sorted, key, exact_cost);
   return candidates;
 }
 
-// Sorts the candidates past a sorted prefix of sorted_candidates() (their cost bits are all
-// larger than the prefix's).
+// The cheapest candidate collapses of one level, sorted (at least `wanted` of them, unless there
+// are fewer): increasing cost, ties by halfedge number, so that the order is total and does not
+// depend on threads. `total`: the number of candidates; `limit`: the leading bits of the
+// largest key returned (the rest comes from sort_candidate_rest()). on_border: one flag per
+// row, set here.
+template <typename CostOfRows>
+std::vector<std::uint64_t> sorted_candidates(const Triangle_halfedges& th, const CostOfRows& cost,
+                                             std::vector<unsigned char>& on_border, Candidate_key& key,
+                                             std::size_t wanted, std::size_t& total, std::uint64_t& limit)
+{
+  const Index nh = static_cast<Index>(th.source.size());
+  on_border.assign(th.n, 0);
+  for(Index h = static_cast<Index>(3 * th.nf); h < nh; ++h)   // the border halfedges come last
+    on_border[th.source[h]] = on_border[th.target[h]] = 1;
+  key = Candidate_key(nh);
+  constexpr std::uint64_t refused = ~std::uint64_t(0);     // no key: its cost bits would be a NaN's
+  std::vector<std::uint64_t> candidates = candidate_keys(th, cost, on_border, key, refused);
+  // Only the cheapest `wanted` are sorted (the level considers them first; of about 6 n
+  // candidates it takes n), with every candidate that shares their leading cost bits (the
+  // exact costs order runs of equal cost bits): a true prefix of the full order; the rest is
+  // computed again and sorted if ever needed (sort_candidate_rest(): a few small levels of a
+  // decomposition). Dragon: 18 % of a decomposition in the sort before the partial sort; its
+  // std::nth_element then took 10 % on two threads, sequential.
+  std::vector<std::uint64_t> front = cheapest_keys(candidates, key, refused, wanted, total, limit);
+  std::vector<std::uint64_t>().swap(candidates);
+  sort_candidates(front.data(), front.size(), key,
+                  [&](Index h) { return candidate_cost(th, cost, on_border, h, th.source[h], th.target[h]); });
+  return front;
+}
+
+// Appends to the sorted front of sorted_candidates() the other candidates, sorted (their
+// leading cost bits are all above `limit`).
 template <typename CostOfRows>
 void sort_candidate_rest(const Triangle_halfedges& th, const CostOfRows& cost, const std::vector<unsigned char>& on_border,
-                         const Candidate_key& key, std::vector<std::uint64_t>& candidates, std::size_t sorted)
+                         const Candidate_key& key, std::uint64_t limit, std::vector<std::uint64_t>& candidates)
 {
-  if(sorted >= candidates.size())
-    return;
-  sort_candidates(candidates.data() + sorted, candidates.size() - sorted, key,
+  constexpr std::uint64_t refused = ~std::uint64_t(0);
+  std::vector<std::uint64_t> rest = candidate_keys(th, cost, on_border, key, refused);
+  keys_above(rest, key, refused, limit);
+  sort_candidates(rest.data(), rest.size(), key,
                   [&](Index h) { return candidate_cost(th, cost, on_border, h, th.source[h], th.target[h]); });
+  candidates.insert(candidates.end(), rest.begin(), rest.end());
 }
 
 // The greedy independent set of half-edge collapses of one level (Section 3.1): the
@@ -619,8 +665,10 @@ void select_collapses(const Triangle_halfedges& th, const double* xyz, const Cos
                       std::size_t window = 0)
 {
   Candidate_key key(0);
-  std::size_t sorted = 0;
-  std::vector<std::uint64_t> candidates = sorted_candidates(th, cost, on_border, key, th.n, sorted);
+  std::size_t all = 0;
+  std::uint64_t limit = 0;
+  std::vector<std::uint64_t> candidates = sorted_candidates(th, cost, on_border, key, th.n, all, limit);
+  const std::size_t sorted = candidates.size();
   accepted.clear();
   // Only the th.n cheapest candidates (of about 6 th.n) are considered, unless fewer than
   // th.n / 16 collapses are accepted among them: a level then leaves an expensive collapse to a
@@ -628,7 +676,7 @@ void select_collapses(const Triangle_halfedges& th, const double* xyz, const Cos
   // its ends happen to be free. Measured (bench_quality, adaptive meshes at 25 / 5 / 1 %): RMS
   // error 4-11 % lower; 7 more levels on the bunny and the dragon, dragon decomposition +15 %
   // (1.29 -> 1.47-1.53 s, one process; +4 % when first measured).
-  auto sort_rest = [&] { sort_candidate_rest(th, cost, on_border, key, candidates, sorted); };
+  auto sort_rest = [&] { sort_candidate_rest(th, cost, on_border, key, limit, candidates); };
   // The rounds do more work than the loop (reservations, three passes): on two threads they
   // took as long as the loop (dragon, level 0: 0.12 s both), on one 40 % longer; they are used
   // from four threads on, where the loop would be the largest sequential part
@@ -637,10 +685,10 @@ void select_collapses(const Triangle_halfedges& th, const double* xyz, const Cos
   if(window == sequential_selection)
   {
     locked.assign(th.n, 0);
-    take_greedily(th, xyz, candidates, sorted, sort_rest, key, budget, on_border, locked, accepted, th.n, th.n / 16 + 1);
+    take_greedily(th, xyz, candidates, sorted, all, sort_rest, key, budget, on_border, locked, accepted, th.n, th.n / 16 + 1);
   }
   else
-    take_greedily_in_rounds(th, xyz, candidates, sorted, sort_rest, key, budget, on_border, accepted, th.n, th.n / 16 + 1,
+    take_greedily_in_rounds(th, xyz, candidates, sorted, all, sort_rest, key, budget, on_border, accepted, th.n, th.n / 16 + 1,
                             window);
 }
 

@@ -63,8 +63,6 @@ void parallel_for_blocks(std::size_t n, const F& f, std::size_t grain = 8192)
     f(std::size_t(0), n);
 }
 
-// Sorts [first, last) by `compare`, in parallel with TBB when it is linked. Callers sort by
-// a total order (keys all different), so the result does not depend on the threads.
 // The number of threads the parallel loops may use here (1 without TBB).
 inline int available_threads()
 {
