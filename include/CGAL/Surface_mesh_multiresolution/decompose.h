@@ -116,7 +116,17 @@ private:
   {
     select_collapses(m_builder.connectivity(), xyz().data(), [&](Index o, Index e) { return m_cost.cost(o, e); }, budget,
                      m_on_border, m_locked, m_accepted);
-    std::sort(m_accepted.begin(), m_accepted.end(), [](const Collapse& a, const Collapse& b) { return a.o < b.o; });
+    // in increasing o (the sources are distinct): an ordered compaction of the rows, not a sort
+    m_target_of.assign(rows(), invalid_index);
+    for(const Collapse& c : m_accepted)
+      m_target_of[c.o] = c.e;
+    auto is_source = [&](std::size_t r) { return m_target_of[r] != invalid_index; };
+    const Ordered_compaction sources(rows(), is_source);
+    m_accepted.resize(sources.size());
+    sources.visit(is_source, [&](std::size_t r, std::size_t rank, bool source) {
+      if(source)
+        m_accepted[rank] = Collapse{static_cast<Index>(r), m_target_of[r]};
+    });
     if(m_scheme != Relaxation_scheme::SECOND_ORDER_DIFFERENCE)   // SOD's hinges read the twins
     {
       m_builder.pair_corners_from_halfedges();
@@ -206,7 +216,8 @@ private:
   std::vector<Relaxation_row_rule> m_rules;
   std::vector<unsigned char> m_on_border, m_locked, m_is_odd;
   std::vector<Collapse> m_accepted;
-  std::vector<std::pair<Index, std::array<Index, 3> > > m_removed;   // (position, corners) of the faces a level removes
+  std::vector<Index> m_target_of;               // the target of each accepted collapse's source, else invalid_index
+  std::vector<unsigned char> m_face_removed;    // the faces of M_k a level removes
 };
 
 // The collapses on the face array, recording how to undo them. The faces of two accepted
@@ -218,7 +229,8 @@ void Decomposition<TriangleMesh, CostModel, Visitor>::collapse_face_array(Pyrami
 {
   const Triangle_halfedges& th = m_builder.connectivity();
   const std::size_t na = m_accepted.size();
-  std::vector<Index> first_renamed(na + 1, 0), first_removed(na + 1, 0);
+  std::vector<Index> first_renamed(na + 1, 0);
+  m_face_removed.assign(m_faces.size() / 3, 0);
   // whether the face of o's outgoing halfedge out[q] holds e (the corners other than o's,
   // which no other collapse renames)
   auto holds_target = [&](Index q, Index e) {
@@ -230,33 +242,30 @@ void Decomposition<TriangleMesh, CostModel, Visitor>::collapse_face_array(Pyrami
     {
       const Collapse& c = m_accepted[i];
       for(Index q = th.out_offsets[c.o]; q < th.out_offsets[c.o + 1]; ++q)
-        if(th.has_face(th.out[q]))                         // a face (o, a, b)
-          ++(holds_target(q, c.e) ? first_removed : first_renamed)[i + 1];
+        if(th.has_face(th.out[q]) && !holds_target(q, c.e))   // a face (o, a, b) that stays
+          ++first_renamed[i + 1];
     }
   }, 1024);
   std::partial_sum(first_renamed.begin(), first_renamed.end(), first_renamed.begin());
-  std::partial_sum(first_removed.begin(), first_removed.end(), first_removed.begin());
-  m_removed.resize(first_removed[na]);
   level.renamed_corners.resize(first_renamed[na]);
   level.renamed_vertices.resize(first_renamed[na]);
   parallel_for_blocks(na, [&](std::size_t first, std::size_t last) {
     for(std::size_t i = first; i < last; ++i)
     {
       const Collapse& c = m_accepted[i];
-      Index renamed = first_renamed[i], gone = first_removed[i];
+      Index renamed = first_renamed[i];
       for(Index q = th.out_offsets[c.o]; q < th.out_offsets[c.o + 1]; ++q)
       {
         if(!th.has_face(th.out[q]))                      // no face (the same test as the count)
           continue;
         const Index g = th.out[q];                         // o -> a in face g / 3, o at corner g % 3
-        Index* t = m_faces.data() + 3 * std::size_t(g / 3);
         if(holds_target(q, c.e))
-          m_removed[gone++] = std::make_pair(g / 3, std::array<Index, 3>{{t[0], t[1], t[2]}});
+          m_face_removed[g / 3] = 1;                       // (no other collapse renames its corners)
         else
         {
           level.renamed_corners[renamed] = g;
           level.renamed_vertices[renamed++] = c.o;
-          t[g % 3] = c.e;
+          m_faces[g] = c.e;
         }
       }
     }
@@ -265,28 +274,28 @@ void Decomposition<TriangleMesh, CostModel, Visitor>::collapse_face_array(Pyrami
 }
 
 // the face array of M_{k+1}: the removed faces taken out (order kept), recorded by position
+// (an ordered compaction of the faces, in parallel)
 template <typename TriangleMesh, typename CostModel, typename Visitor>
 void Decomposition<TriangleMesh, CostModel, Visitor>::take_out_removed_faces(Pyramid_level& level)
 {
-  std::sort(m_removed.begin(), m_removed.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-  std::size_t write = 0, next_removed = 0;
   const std::size_t number_of_faces = m_faces.size() / 3;
-  for(std::size_t p = 0; p < number_of_faces; ++p)
-  {
-    if(next_removed < m_removed.size() && m_removed[next_removed].first == p) { ++next_removed; continue; }
-    if(write != p)
-      copy_values(m_faces.data() + 3 * p, 3, m_faces.data() + 3 * write);
-    ++write;
-  }
-  m_faces.resize(3 * write);
-  m_faces.shrink_to_fit();
-  level.removed_face_positions.reserve(m_removed.size());
-  level.removed_faces.reserve(3 * m_removed.size());
-  for(const auto& r : m_removed)
-  {
-    level.removed_face_positions.push_back(r.first);
-    level.removed_faces.insert(level.removed_faces.end(), r.second.begin(), r.second.end());
-  }
+  auto removed = [&](std::size_t p) { return m_face_removed[p] != 0; };
+  const Ordered_compaction removed_faces(number_of_faces, removed);
+  const std::size_t nr = removed_faces.size();
+  level.removed_face_positions.resize(nr);
+  level.removed_faces.resize(3 * nr);
+  std::vector<Index> kept(3 * (number_of_faces - nr));
+  removed_faces.visit(removed, [&](std::size_t p, std::size_t rank, bool is_removed) {
+    const Index* t = m_faces.data() + 3 * p;
+    if(is_removed)
+    {
+      level.removed_face_positions[rank] = static_cast<Index>(p);
+      copy_values(t, 3, level.removed_faces.data() + 3 * rank);
+    }
+    else
+      copy_values(t, 3, kept.data() + 3 * (p - rank));
+  });
+  m_faces.swap(kept);
 }
 
 // The values of every channel of the input, validated (channel 0: the coordinates)
