@@ -118,7 +118,15 @@ public:
     repeated_directed_edge = !match_twins_by_smaller_end();
     if(repeated_directed_edge)
       match_twins_first_come(tri);
-    const std::size_t border_halfedges = static_cast<std::size_t>(std::count(twin.begin(), twin.end(), invalid_index));
+    // the face halfedges without a twin, in increasing order: border halfedge h0 + i is the twin of the i-th
+    auto without_twin = [&](std::size_t h) { return twin[h] == invalid_index; };
+    const Ordered_compaction borders(twin.size(), without_twin);
+    std::vector<Index> border_twins(borders.size());
+    borders.visit(without_twin, [&](std::size_t h, std::size_t rank, bool border) {
+      if(border)
+        border_twins[rank] = static_cast<Index>(h);
+    });
+    const std::size_t border_halfedges = border_twins.size();
     const std::size_t h0 = 3 * nf, nh = h0 + border_halfedges;
     source.resize(nh);
     target.resize(nh);
@@ -130,7 +138,7 @@ public:
       }
     });
     if(border_halfedges > 0)                         // closed mesh: the rows are the face halfedges
-      add_border_halfedges(border_halfedges, with_apexes);
+      add_border_halfedges(border_twins, with_apexes);
     m_sorted_first = std::vector<Index>();
     m_sorted = std::vector<std::pair<Index, Index> >();
   }
@@ -286,15 +294,15 @@ private:
   }
 
   // border halfedges, numbered after the face halfedges: each vertex's row gets them at its end
-  void add_border_halfedges(std::size_t border_halfedges, bool with_apexes)
+  // (border_twins: the face halfedges without a twin, in increasing order)
+  void add_border_halfedges(const std::vector<Index>& border_twins, bool with_apexes)
   {
     const Index h0 = static_cast<Index>(3 * nf);
-    const std::size_t nh = h0 + border_halfedges;
+    const std::size_t nh = h0 + border_twins.size();
     twin.resize(nh);
     std::vector<Index> extra(n + 1, 0);
-    for(Index h = 0; h < h0; ++h)
-      if(twin[h] == invalid_index)
-        ++extra[target[h] + 1];                      // target(h) needs a border halfedge towards source(h)
+    for(Index h : border_twins)
+      ++extra[target[h] + 1];                        // target(h) needs a border halfedge towards source(h)
     std::vector<Index> face_off;
     face_off.swap(out_offsets);
     out_offsets.assign(n + 1, 0);
@@ -320,17 +328,16 @@ private:
     for(std::size_t i = 0; i < n; ++i)
       fill[i] = out_offsets[i] + (face_off[i + 1] - face_off[i]);
     Index g = h0;
-    for(Index h = 0; h < h0; ++h)
-      if(twin[h] == invalid_index)
-      {
-        source[g] = target[h];
-        target[g] = source[h];
-        twin[g] = h;
-        twin[h] = g;
-        out_target[fill[source[g]]] = target[g];
-        out[fill[source[g]]++] = g;
-        ++g;
-      }
+    for(Index h : border_twins)
+    {
+      source[g] = target[h];
+      target[g] = source[h];
+      twin[g] = h;
+      twin[h] = g;
+      out_target[fill[source[g]]] = target[g];
+      out[fill[source[g]]++] = g;
+      ++g;
+    }
   }
 };
 

@@ -174,6 +174,9 @@ public:
         w.offsets[i + 1] = static_cast<Index>(ring_row_length(i, rules[i]));
       }
     });
+    // the pairing depends on the connectivity only: the next build() on it (relax() rebuilds
+    // the weights for new positions at every iteration) reads it instead of matching the rings
+    m_paired = true;
     for(std::size_t i = 0; i < n; ++i)
       w.offsets[i + 1] += w.offsets[i];
     w.columns.resize(w.offsets[n]);
@@ -262,15 +265,15 @@ private:
 
   // Pairs the corners of vertex i (m_corner_twin[k]: the halfedge out of i in the face across
   // the edge of corner k, or invalid_index; m_apex_matched[m]: whether corner m is some
-  // corner's twin; first come, first served where a directed edge repeats) and returns FIXED,
-  // BORDER or SCHEME. Rings longer than 32
+  // corner's twin; first come, first served where a directed edge repeats; constrained rows
+  // too) and returns FIXED, BORDER or SCHEME. Rings longer than 32
   // corners are searched through a sorted copy (`sorted`, scratch), so that a vertex of valence
   // D costs D log D, not D^2. (Local pointers and a bit mask: stores through the byte flags
   // would otherwise make the compiler reload every array's address in the inner loop.)
   Relaxation_row_rule match_ring(std::size_t i, const unsigned char* fixed, std::vector<std::pair<Index, Index> >& sorted)
   {
     const Index b = m_offs[i], e = corners_end(i);
-    if(b == e || (fixed != nullptr && fixed[i]))
+    if(b == e)
       return Relaxation_row_rule::FIXED;
     Index* twin_of = m_corner_twin.data();
     unsigned char* matched = m_apex_matched.data();
@@ -354,6 +357,8 @@ private:
       for(Index m = b; m < e && !border; ++m)
         border = !matched[m];
     }
+    if(fixed != nullptr && fixed[i])                      // (paired all the same: a later build may read the pairing)
+      return Relaxation_row_rule::FIXED;
     return border ? Relaxation_row_rule::BORDER : Relaxation_row_rule::SCHEME;
   }
 
