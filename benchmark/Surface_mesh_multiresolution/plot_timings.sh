@@ -24,8 +24,9 @@ if [ -d "$DATA" ]; then
 fi
 TABLE="$BUILD/timings.md"
 [ "${2:-}" = "--plot-only" ] || "$BUILD/benchmark/Surface_mesh_multiresolution/bench_pyramid" "${files[@]}" | tee "$TABLE"
-# columns: vertices, decompose, reconstruct, SMS, OpenMesh, meshopt (seconds)
-awk -F'|' 'NR > 2 { gsub(/\([^)]*\)/, ""); print $3, $6, $7, $9, $10, $11 }' "$TABLE" | sort -n > "$BUILD/timings.dat"
+# columns: vertices, decompose, reconstruct, SMS, OpenMesh, meshopt (seconds), from the rows of
+# the first table only (16 columns; the file table after it has 9)
+awk -F'|' 'NF == 18 && $3 ~ /^ *[0-9]+ *$/ { gsub(/\([^)]*\)/, ""); print $3, $6, $7, $9, $10, $11 }' "$TABLE" | sort -n > "$BUILD/timings.dat"
 gnuplot <<GNUPLOT
 set terminal pngcairo size 900,600 font ",11" noenhanced
 set output "$HERE/timings.png"
