@@ -538,15 +538,31 @@ TEST_CASE("pyramid files: what analysis gives is derived at load, edited details
     SMR::reconstruct(back, b);
     CHECK(smr_test::positions_in_order(a) == smr_test::positions_in_order(b));
     CHECK(bytes_of(back) == bytes);
+    // the writer skips the analysis of channels whose state is known (decomposed, read,
+    // denoised): forgetting the states (any non-const access to the details) makes it analyse
+    // every channel again, and the file is the same
+    SMR::Pyramid<Mesh> forgotten = p;
+    for(std::size_t c = 0; c < p.number_of_channels(); ++c)
+      forgotten.details(1, c);
+    for(SMR::internal::Analysis_state state : forgotten.analysis_states())
+      CHECK(state == SMR::internal::Analysis_state::UNKNOWN);
+    CHECK(bytes_of(forgotten) == bytes);
   };
+  using State = SMR::internal::Analysis_state;
+  REQUIRE(pyr.analysis_states().size() == 2);
+  CHECK(pyr.analysis_states()[0] == State::OF_WEIGHT_POSITIONS);
+  CHECK(pyr.analysis_states()[1] == State::OF_VALUES);
   round_trip(pyr, derived_size);
   // a denoised geometry is stored by its values (it is what its analysis gives)
   SMR::Pyramid<Mesh> denoised = pyr;
   SMR::denoise(denoised, SMR::parameters::number_of_iterations(3u));
+  CHECK(denoised.analysis_states()[0] == State::OF_VALUES);
   round_trip(denoised, derived_size + 24 * n);
   // edited geometry details are stored as they are: larger, exact
   SMR::Pyramid<Mesh> enhanced = pyr;
   SMR::scale_details(enhanced, 1, 2., SMR::parameters::channel(std::size_t(0)));
+  CHECK(enhanced.analysis_states()[0] == State::UNKNOWN);
+  CHECK(enhanced.analysis_states()[1] == State::OF_VALUES);
   std::size_t details = 0;
   for(std::size_t j = 1; j <= pyr.number_of_levels(); ++j)
     details += 8 * pyr.details(j, 0).size() + 12 * pyr.levels()[j - 1].corrections[0].size() + 16;

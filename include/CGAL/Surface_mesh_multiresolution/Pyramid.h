@@ -54,6 +54,14 @@ struct Pyramid_level
 // through this class; users only read it (and edit details through fixed-size views).
 struct Pyramid_access;
 
+// What is known of a channel's details, corrections and coarsest values: nothing (they may
+// have been edited), that they are the exact analysis of some values on M_0 (a decomposition's
+// attribute channels, a denoised channel), or that they are the exact analysis of the
+// pyramid's weight positions (a decomposition's geometry). IO::write_pyramid() then need not
+// analyse a channel again to know whether its values suffice, nor, for the weight positions,
+// reconstruct it. Any non-const access to a channel's details makes it UNKNOWN.
+enum class Analysis_state : unsigned char { UNKNOWN = 0, OF_VALUES = 1, OF_WEIGHT_POSITIONS = 2 };
+
 } // namespace internal
 /// \endcond
 
@@ -161,6 +169,8 @@ public:
   {
     check_detail_level(j);
     check_channel(c);
+    if(c < m_analysed.size())
+      m_analysed[c] = internal::Analysis_state::UNKNOWN;   // the details may change from here on
     std::vector<double>& d = m_levels[j - 1].details[c];
     return Detail_view(d.data(), d.size());
   }
@@ -214,6 +224,9 @@ public:
   // the positions (3 per input vertex) every level's weights are computed from: the input's
   // (empty where the levels store their weights: pyramids of format 1 and 2 files)
   const std::vector<double>& weight_positions() const { return m_weight_positions; }
+  // per channel: whether its details, corrections and coarsest values are known to be the
+  // exact analysis of values on M_0 (Analysis_state); empty: nothing known
+  const std::vector<internal::Analysis_state>& analysis_states() const { return m_analysed; }
   /// \endcond
 
 private:
@@ -255,6 +268,7 @@ private:
   std::vector<Index> m_coarse_faces;                    // 3 rows of M_K per face
   std::vector<std::vector<double> > m_coarse_values;    // per channel, rows of M_K
   std::vector<double> m_weight_positions;               // 3 per input vertex (level_weights.h)
+  std::vector<internal::Analysis_state> m_analysed;     // per channel (analysis_states())
 };
 
 /// \cond SKIP_IN_MANUAL
@@ -270,6 +284,13 @@ struct Pyramid_access
   template <typename TM> static std::vector<double>& weight_positions(Pyramid<TM>& p) { return p.m_weight_positions; }
   template <typename TM> static void set_number_of_input_vertices(Pyramid<TM>& p, std::size_t n) { p.m_number_of_input_vertices = n; }
   template <typename TM> static void set_relaxation_scheme(Pyramid<TM>& p, Relaxation_scheme s) { p.m_scheme = s; }
+  template <typename TM> static std::vector<Analysis_state>& analysis_states(Pyramid<TM>& p) { return p.m_analysed; }
+  // the state of channel c (every channel UNKNOWN first if no state is held)
+  template <typename TM> static void set_analysis_state(Pyramid<TM>& p, std::size_t c, Analysis_state a)
+  {
+    p.m_analysed.resize(p.number_of_channels(), Analysis_state::UNKNOWN);
+    p.m_analysed[c] = a;
+  }
 };
 
 } // namespace internal

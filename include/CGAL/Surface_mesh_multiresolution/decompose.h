@@ -429,6 +429,10 @@ Pyramid<TriangleMesh> decompose(const TriangleMesh& tm, const NamedParameters& n
   // the positions the weights derive from, read again (validated above): no copy of them is
   // held through the first level, where a decomposition's memory peaks
   internal::read_coordinates(input_vertices, vpm, gt, internal::Pyramid_access::weight_positions(pyr));
+  // every channel is the analysis of its input values, the geometry of the weight positions
+  for(std::size_t c = 0; c < pyr.number_of_channels(); ++c)
+    internal::Pyramid_access::set_analysis_state(pyr, c, c == 0 ? internal::Analysis_state::OF_WEIGHT_POSITIONS
+                                                                : internal::Analysis_state::OF_VALUES);
   return pyr;
 }
 

@@ -262,6 +262,7 @@ void analyse_again(Pyramid<TriangleMesh>& pyr, std::size_t c, const std::vector<
     levels[k].corrections[c].swap(corrections);
   });
   Pyramid_access::coarse_values(pyr)[c] = coarsest_values(pyr, pyr.channel_dimension(c), x);
+  Pyramid_access::set_analysis_state(pyr, c, Analysis_state::OF_VALUES);
 }
 
 } // namespace internal
