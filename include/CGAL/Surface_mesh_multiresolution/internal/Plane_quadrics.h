@@ -45,38 +45,35 @@ public:
   {
     m_xyz = xyz.data();
     m_q.assign(size * th.n, 0.);
-    for(std::size_t f = 0; f < th.nf; ++f)
-    {
-      const Index h0 = static_cast<Index>(3 * f);
-      // CGAL takes p = target(h), q = target(next(h)), r = source(h) of the face's halfedge
-      const double* p = point(th.target[h0]);
-      const double* q = point(th.target[h0 + 1]);
-      const double* r = point(th.source[h0]);
-      double n[3];
-      cross_of_differences(q, r, p, n);
-      normalize(n);
-      double face_quadric[size];
-      outer(n, p, face_quadric);
-      for(Index h = h0; h < h0 + 3; ++h)
+    // Each vertex adds the quadrics of its faces and of the border edges at it in the order
+    // of a loop over the faces (a face's plane, then the border edges of its halfedges h0,
+    // h0 + 1, h0 + 2 as they come): the sums of that sequential loop, bit for bit, in parallel
+    // over the vertices (their corners are listed in face order); each face's plane is
+    // computed by each of its three corners.
+    const Index h0 = static_cast<Index>(3 * th.nf);
+    parallel_for_blocks(th.n, [&](std::size_t first, std::size_t last) {
+      double face_quadric[size], edge_quadric[size];
+      for(std::size_t v = first; v < last; ++v)
       {
-        add(th.source[h], face_quadric, 1.);
-        if(th.has_face(th.twin[h]))
-          continue;
-        // border edge source(h) -> target(h): the plane through it, perpendicular to the face
-        const double* ep = point(th.target[h]);
-        const double* eq = point(th.target[Triangle_halfedges::next_in_face(h)]);
-        const double* er = point(th.source[h]);
-        double fn[3], edge[3], en[3];
-        cross_of_differences(eq, er, ep, fn);
-        for(int c = 0; c < 3; ++c) edge[c] = ep[c] - er[c];
-        cross(edge, fn, en);
-        normalize(en);
-        double edge_quadric[size];
-        outer(en, ep, edge_quadric);
-        add(th.source[h], edge_quadric, discontinuity_multiplier);
-        add(th.target[h], edge_quadric, discontinuity_multiplier);
+        const Index row = static_cast<Index>(v);
+        for(Index k = th.out_offsets[v]; k < th.out_offsets[v + 1]; ++k)
+        {
+          const Index h = th.out[k];                       // v -> a in its face
+          if(h >= h0)
+            continue;                                      // a border halfedge: no face
+          const Index into = Triangle_halfedges::prev_in_face(h);   // b -> v in the same face
+          const bool border_out = !th.has_face(th.twin[h]), border_into = !th.has_face(th.twin[into]);
+          plane_of_face(th, h - h % 3, face_quadric);
+          if(h % 3 != 0 && border_into)                    // the face loop meets `into` before h
+            add(row, plane_of_border_edge(th, into, edge_quadric), discontinuity_multiplier);
+          add(row, face_quadric, 1.);
+          if(border_out)
+            add(row, plane_of_border_edge(th, h, edge_quadric), discontinuity_multiplier);
+          if(h % 3 == 0 && border_into)                    // ... or after it (h is the face's first halfedge)
+            add(row, plane_of_border_edge(th, into, edge_quadric), discontinuity_multiplier);
+        }
       }
-    }
+    });
   }
 
   // a new level: xyz holds the positions of its rows (the quadrics follow them, see retain())
@@ -132,6 +129,35 @@ public:
 
 private:
   const double* point(Index v) const { return m_xyz + 3 * std::size_t(v); }
+
+  // the quadric of the plane of the face whose first halfedge is h0; CGAL takes
+  // p = target(h), q = target(next(h)), r = source(h) of the face's halfedge
+  void plane_of_face(const Triangle_halfedges& th, Index h0, double* out) const
+  {
+    const double* p = point(th.target[h0]);
+    const double* q = point(th.target[h0 + 1]);
+    const double* r = point(th.source[h0]);
+    double n[3];
+    cross_of_differences(q, r, p, n);
+    normalize(n);
+    outer(n, p, out);
+  }
+
+  // the quadric of the plane through the border edge source(h) -> target(h) (a face halfedge
+  // without a face across), perpendicular to its face
+  const double* plane_of_border_edge(const Triangle_halfedges& th, Index h, double* out) const
+  {
+    const double* ep = point(th.target[h]);
+    const double* eq = point(th.target[Triangle_halfedges::next_in_face(h)]);
+    const double* er = point(th.source[h]);
+    double fn[3], edge[3], en[3];
+    cross_of_differences(eq, er, ep, fn);
+    for(int c = 0; c < 3; ++c) edge[c] = ep[c] - er[c];
+    cross(edge, fn, en);
+    normalize(en);
+    outer(en, ep, out);
+    return out;
+  }
 
   // as CGAL: a zero vector stays zero (degenerate face: no plane, no quadric)
   static void normalize(double* n)
