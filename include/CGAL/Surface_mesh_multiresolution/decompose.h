@@ -123,7 +123,7 @@ private:
     auto is_source = [&](std::size_t r) { return m_target_of[r] != invalid_index; };
     const Ordered_compaction sources(rows(), is_source);
     m_accepted.resize(sources.size());
-    sources.visit(is_source, [&](std::size_t r, std::size_t rank, bool source) {
+    sources.visit([&](std::size_t r, std::size_t rank, bool source) {
       if(source)
         m_accepted[rank] = Collapse{static_cast<Index>(r), m_target_of[r]};
     });
@@ -285,7 +285,7 @@ void Decomposition<TriangleMesh, CostModel, Visitor>::take_out_removed_faces(Pyr
   level.removed_face_positions.resize(nr);
   level.removed_faces.resize(3 * nr);
   std::vector<Index> kept(3 * (number_of_faces - nr));
-  removed_faces.visit(removed, [&](std::size_t p, std::size_t rank, bool is_removed) {
+  removed_faces.visit([&](std::size_t p, std::size_t rank, bool is_removed) {
     const Index* t = m_faces.data() + 3 * p;
     if(is_removed)
     {

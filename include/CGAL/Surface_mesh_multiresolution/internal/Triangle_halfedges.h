@@ -122,7 +122,7 @@ public:
     auto without_twin = [&](std::size_t h) { return twin[h] == invalid_index; };
     const Ordered_compaction borders(twin.size(), without_twin);
     std::vector<Index> border_twins(borders.size());
-    borders.visit(without_twin, [&](std::size_t h, std::size_t rank, bool border) {
+    borders.visit([&](std::size_t h, std::size_t rank, bool border) {
       if(border)
         border_twins[rank] = static_cast<Index>(h);
     });

@@ -482,6 +482,17 @@ double candidate_cost(const Triangle_halfedges& th, const CostOfRows& cost, cons
   return oc ? *oc : std::numeric_limits<double>::quiet_NaN();
 }
 
+// the same for a halfedge alone (its ends read from the halfedges): the costs that order runs
+// of equal cost bits
+template <typename CostOfRows>
+double candidate_cost(const Triangle_halfedges& th, const CostOfRows& cost, const std::vector<unsigned char>& on_border, Index h)
+{
+  return candidate_cost(th, cost, on_border, h, th.source[h], th.target[h]);
+}
+
+// the key of a refused candidate: none (its cost bits would be a NaN's)
+constexpr std::uint64_t refused_candidate = ~std::uint64_t(0);
+
 // The cheapest candidate keys of `c`, in their order in `c`, without the `refused` ones: the
 // keys whose leading 24 bits (Candidate_key::leading_bits()) are at most `limit`, which is
 // those of the wanted-th cheapest key (all keys, limit = ~0, when wanted is at least half of
@@ -581,14 +592,13 @@ inline void keys_above(std::vector<std::uint64_t>& c, const Candidate_key& key, 
 }
 
 // The keys of the candidate collapses of one level, every halfedge o -> e of M_k in the order
-// of the vertices' lists of outgoing halfedges, `refused` for those that would move a border
+// of the vertices' lists of outgoing halfedges, `refused_candidate` for those that would move a border
 // vertex off the border and those the cost model refuses. Computed in parallel (TBB), vertex
 // by vertex (the quadric and position of o are read once for its 1-ring, those of its
 // neighbours are near in memory), each into its own slot.
 template <typename CostOfRows>
 std::vector<std::uint64_t> candidate_keys(const Triangle_halfedges& th, const CostOfRows& cost,
-                                          const std::vector<unsigned char>& on_border, const Candidate_key& key,
-                                          std::uint64_t refused)
+                                          const std::vector<unsigned char>& on_border, const Candidate_key& key)
 {
   std::vector<std::uint64_t> candidates(th.source.size());
   parallel_for_blocks(th.n, [&](std::size_t first, std::size_t last) {
@@ -597,7 +607,7 @@ std::vector<std::uint64_t> candidate_keys(const Triangle_halfedges& th, const Co
       {
         const Index h = th.out[k];
         const double c = candidate_cost(th, cost, on_border, h, static_cast<Index>(o), th.out_target[k]);
-        candidates[k] = std::isnan(c) ? refused : key(c, h);
+        candidates[k] = std::isnan(c) ? refused_candidate : key(c, h);
       }
   }, 1024);
   return candidates;
@@ -618,18 +628,16 @@ std::vector<std::uint64_t> sorted_candidates(const Triangle_halfedges& th, const
   for(Index h = static_cast<Index>(3 * th.nf); h < nh; ++h)   // the border halfedges come last
     on_border[th.source[h]] = on_border[th.target[h]] = 1;
   key = Candidate_key(nh);
-  constexpr std::uint64_t refused = ~std::uint64_t(0);     // no key: its cost bits would be a NaN's
-  std::vector<std::uint64_t> candidates = candidate_keys(th, cost, on_border, key, refused);
+  std::vector<std::uint64_t> candidates = candidate_keys(th, cost, on_border, key);
   // Only the cheapest `wanted` are sorted (the level considers them first; of about 6 n
   // candidates it takes n), with every candidate that shares their leading cost bits (the
   // exact costs order runs of equal cost bits): a true prefix of the full order; the rest is
   // computed again and sorted if ever needed (sort_candidate_rest(): a few small levels of a
   // decomposition). Dragon: 18 % of a decomposition in the sort before the partial sort; its
   // std::nth_element then took 10 % on two threads, sequential.
-  std::vector<std::uint64_t> front = cheapest_keys(candidates, key, refused, wanted, total, limit);
+  std::vector<std::uint64_t> front = cheapest_keys(candidates, key, refused_candidate, wanted, total, limit);
   std::vector<std::uint64_t>().swap(candidates);
-  sort_candidates(front.data(), front.size(), key,
-                  [&](Index h) { return candidate_cost(th, cost, on_border, h, th.source[h], th.target[h]); });
+  sort_candidates(front.data(), front.size(), key, [&](Index h) { return candidate_cost(th, cost, on_border, h); });
   return front;
 }
 
@@ -639,11 +647,9 @@ template <typename CostOfRows>
 void sort_candidate_rest(const Triangle_halfedges& th, const CostOfRows& cost, const std::vector<unsigned char>& on_border,
                          const Candidate_key& key, std::uint64_t limit, std::vector<std::uint64_t>& candidates)
 {
-  constexpr std::uint64_t refused = ~std::uint64_t(0);
-  std::vector<std::uint64_t> rest = candidate_keys(th, cost, on_border, key, refused);
-  keys_above(rest, key, refused, limit);
-  sort_candidates(rest.data(), rest.size(), key,
-                  [&](Index h) { return candidate_cost(th, cost, on_border, h, th.source[h], th.target[h]); });
+  std::vector<std::uint64_t> rest = candidate_keys(th, cost, on_border, key);
+  keys_above(rest, key, refused_candidate, limit);
+  sort_candidates(rest.data(), rest.size(), key, [&](Index h) { return candidate_cost(th, cost, on_border, h); });
   candidates.insert(candidates.end(), rest.begin(), rest.end());
 }
 

@@ -81,22 +81,21 @@ inline void analyse_level(const Pyramid_level& lev, const Sparse_weights& w, std
   odd_values_from_targets(lev, dim, state.data());
   w.apply_row_list(state.data(), prediction.data(), dim, lev.odd_rows.data(), lev.odd_rows.size());
   w.apply_row_list(f.data(), prediction.data(), dim, lev.even_rows.data(), lev.even_rows.size());
-  // the detail of value k, and whether prediction + detail misses f[k] (a correction is kept)
-  auto detail = [&](std::size_t k, double& d) {
+  // writes the detail of value k and tells whether prediction + detail misses f[k] (then a
+  // correction is kept); the corrections listed in increasing k, in parallel
+  details.resize(n);
+  auto needs_correction = [&](std::size_t k) {
     const double p = usable_prediction(prediction[k]);
-    d = f[k] - p;
+    double d = f[k] - p;
     if(!std::isfinite(d))
       d = -p;
+    details[k] = d;
     const double t = p + d;
     return t != f[k] || std::signbit(t) != std::signbit(f[k]);
   };
-  auto needs_correction = [&](std::size_t k) { double d; return detail(k, d); };
-  // in parallel: the corrections in increasing k, as the sequential loop lists them
   const Ordered_compaction corrected(n, needs_correction);
-  details.resize(n);
   corrections.resize(corrected.size());
-  corrected.visit(needs_correction, [&](std::size_t k, std::size_t rank, bool correction) {
-    detail(k, details[k]);
+  corrected.visit([&](std::size_t k, std::size_t rank, bool correction) {
     if(correction)
       corrections[rank] = std::make_pair(static_cast<Index>(k), f[k] - (usable_prediction(prediction[k]) + details[k]));
   });

@@ -64,22 +64,23 @@ void parallel_for_blocks(std::size_t n, const F& f, std::size_t grain = 8192)
     f(std::size_t(0), n);
 }
 
-// An ordered compaction in parallel: keep(p) is evaluated once per position p < n in fixed
-// blocks, the kept positions counted per block and numbered by a prefix sum over the blocks;
-// visit(p, rank) then sees every position with the number of kept positions before it, as a
-// sequential scan would, for any number of threads.
+// An ordered compaction in parallel: keep(p) is evaluated per position p < n in fixed blocks,
+// the kept positions counted per block and numbered by a prefix sum over the blocks; visit()
+// then calls f(p, rank, kept) for every position, rank being the number of kept positions
+// before p, as a sequential scan would give it, for any number of threads. keep must give the
+// same answer both times (it is not stored: a flag per position would cost memory).
+template <typename Keep>
 class Ordered_compaction
 {
 public:
-  template <typename Keep>
-  Ordered_compaction(std::size_t n, const Keep& keep) : m_n(n), m_first((n + block - 1) / block + 1, 0)
+  Ordered_compaction(std::size_t n, const Keep& keep) : m_n(n), m_keep(keep), m_first((n + block - 1) / block + 1, 0)
   {
     parallel_for_blocks(m_first.size() - 1, [&](std::size_t b0, std::size_t b1) {
       for(std::size_t b = b0; b < b1; ++b)
       {
         std::size_t count = 0;
         for(std::size_t p = b * block, e = (std::min)(m_n, (b + 1) * block); p < e; ++p)
-          count += keep(p) ? 1 : 0;
+          count += m_keep(p) ? 1 : 0;
         m_first[b + 1] = count;
       }
     }, 1);
@@ -90,8 +91,8 @@ public:
   // the number of kept positions
   std::size_t size() const { return m_first.back(); }
 
-  template <typename Keep, typename Visit>
-  void visit(const Keep& keep, const Visit& visit) const
+  template <typename Visit>
+  void visit(const Visit& f) const
   {
     parallel_for_blocks(m_first.size() - 1, [&](std::size_t b0, std::size_t b1) {
       for(std::size_t b = b0; b < b1; ++b)
@@ -99,8 +100,8 @@ public:
         std::size_t rank = m_first[b];
         for(std::size_t p = b * block, e = (std::min)(m_n, (b + 1) * block); p < e; ++p)
         {
-          const bool kept = keep(p);
-          visit(p, rank, kept);
+          const bool kept = m_keep(p);
+          f(p, rank, kept);
           rank += kept ? 1 : 0;
         }
       }
@@ -110,6 +111,7 @@ public:
 private:
   static constexpr std::size_t block = std::size_t(1) << 14;
   std::size_t m_n;
+  const Keep& m_keep;
   std::vector<std::size_t> m_first;
 };
 
