@@ -607,3 +607,71 @@ TEST_CASE("adaptive faces: keeping exactly the vertices of M_k gives the faces o
     CHECK(a == b);
   }
 }
+
+TEST_CASE("a level's collapses are checked in parallel and the first refused one is reported", "[attack][io]")
+{
+  using SMR::internal::Index;
+  // a level of more than two parallel blocks of collapses (the blocks are 8192 long): a greedy
+  // independent set of interior vertices of a 300 x 300 grid, each collapsed into its first
+  // free neighbour along an edge that satisfies the link condition
+  const Mesh m = smr_test::planar_grid<Mesh>(300, 0.2);
+  SMR::internal::Indexed_mesh<Mesh> im;
+  SMR::internal::build_indexed_mesh(m, get(CGAL::vertex_index, m), im);
+  const std::size_t n = im.number_of_vertices();
+  SMR::internal::Triangle_halfedges th;
+  th.build(n, im.triangles, true);
+  std::vector<unsigned char> on_border(n, 0), taken(n, 0);
+  for(std::size_t h = 3 * th.nf; h < th.source.size(); ++h)
+    on_border[th.source[h]] = on_border[th.target[h]] = 1;
+  SMR::internal::Pyramid_level lev;
+  for(Index v = 0; v < n; ++v)
+    lev.vertices.push_back(v);
+  for(Index o = 0; o < n; ++o)
+  {
+    if(taken[o] || on_border[o])
+      continue;
+    for(Index k = th.out_offsets[o]; k < th.out_offsets[o + 1]; ++k)
+    {
+      const Index e = th.out_target[k];
+      if(taken[e] == 1 || !SMR::internal::satisfies_link_condition(th, th.out[k], o, e, on_border))
+        continue;
+      lev.odd_rows.push_back(o);
+      lev.collapse_targets.push_back(e);
+      taken[o] = 1;                                   // odd
+      for(Index q = th.out_offsets[o]; q < th.out_offsets[o + 1]; ++q)
+        taken[th.out_target[q]] = (std::max)(taken[th.out_target[q]], static_cast<unsigned char>(2));   // a neighbour: not odd
+      taken[e] = 1;                                   // a target: neither odd nor a target again
+      break;
+    }
+  }
+  const std::size_t odd = lev.odd_rows.size();
+  REQUIRE(odd > 2 * 8192);
+  CHECK(SMR::internal::check_level_halfedges(lev, th).empty());
+  // two refusals far apart (different blocks): the one of the earlier odd row is reported,
+  // whichever comes first
+  const std::string neighbours = "two odd vertices are neighbours", far = "a collapse target is not a neighbour of its odd vertex";
+  auto with_refusals = [&](std::size_t odd_pair_at, std::size_t far_target_at) {
+    SMR::internal::Pyramid_level bad = lev;
+    // a vertex two rows away from odd row `far_target_at` (not among its neighbours) as its target
+    const Index o = bad.odd_rows[far_target_at];
+    bad.collapse_targets[far_target_at] = o + 2 * 301 < n ? o + 2 * 301 : o - 2 * 301;
+    for(Index k = th.out_offsets[o]; k < th.out_offsets[o + 1]; ++k)
+      REQUIRE(th.out_target[k] != bad.collapse_targets[far_target_at]);
+    // a neighbour of the odd row `odd_pair_at` made odd too, with a target of its own
+    const Index a = bad.odd_rows[odd_pair_at];
+    for(Index k = th.out_offsets[a]; k < th.out_offsets[a + 1]; ++k)
+    {
+      const Index b = th.out_target[k];
+      if(std::find(bad.collapse_targets.begin(), bad.collapse_targets.end(), b) != bad.collapse_targets.end())
+        continue;
+      const auto at = std::lower_bound(bad.odd_rows.begin(), bad.odd_rows.end(), b);
+      bad.collapse_targets.insert(bad.collapse_targets.begin() + (at - bad.odd_rows.begin()), a);
+      bad.odd_rows.insert(at, b);
+      break;
+    }
+    REQUIRE(bad.odd_rows.size() == odd + 1);
+    return SMR::internal::check_level_halfedges(bad, th);
+  };
+  CHECK(with_refusals(odd / 5, 4 * odd / 5) == neighbours);
+  CHECK(with_refusals(4 * odd / 5, odd / 5) == far);
+}

@@ -14,6 +14,7 @@
 #include <CGAL/Polygon_mesh_processing/compute_normal.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numeric>
 #include <set>
@@ -418,6 +419,75 @@ TEST_CASE("several relaxation steps in one call read the first step's ring pairi
       SMR::relax(b, SMR::parameters::relaxation_scheme(s).vertex_is_constrained_map(cb));
     CHECK(smr_test::positions_in_order(a) == smr_test::positions_in_order(b));
     CHECK(smr_test::positions_in_order(a) != smr_test::positions_in_order(m));
+  }
+}
+
+TEST_CASE("a relax() step applies its weights as it computes them: the stored operator's bits", "[relaxation][iterations]")
+{
+  // the same awkward rings as above; positions and two attribute channels of 1 + 6 values
+  // (a combined dimension of 7: the general row sum) relaxed by one step of relax() and by
+  // the operator computed on the same mesh and applied to it
+  Mesh m = smr_test::planar_grid<Mesh>(8, 0.2);
+  {
+    const double pi = 3.14159265358979323846;
+    const auto centre = m.add_vertex(Point_3(20, 0, 0.3));
+    std::vector<Mesh::Vertex_index> rim;
+    for(int k = 0; k < 40; ++k)
+      rim.push_back(m.add_vertex(Point_3(20 + std::cos(2 * pi * k / 40), std::sin(2 * pi * k / 40), 0.1 * (k % 3))));
+    for(int k = 0; k < 40; ++k)
+      m.add_face(centre, rim[k], rim[(k + 1) % 40]);
+    m.add_vertex(Point_3(5, 5, 5));
+  }
+  auto constrained = m.add_property_map<Mesh::Vertex_index, bool>("v:fixed", false).first;
+  auto f = m.add_property_map<Mesh::Vertex_index, double>("v:f", 0.).first;
+  auto g = m.add_property_map<Mesh::Vertex_index, std::array<double, 6> >("v:g").first;
+  std::size_t k = 0;
+  for(auto v : vertices(m))
+  {
+    constrained[v] = (k % 7 == 3);
+    f[v] = std::sin(double(k));
+    for(int c = 0; c < 6; ++c) g[v][c] = std::cos(double(k * (c + 1)));
+    ++k;
+  }
+  for(auto s : {SMR::Relaxation_scheme::CURVATURE, SMR::Relaxation_scheme::UNIFORM, SMR::Relaxation_scheme::SECOND_ORDER_DIFFERENCE})
+  {
+    Mesh a = m, b = m;
+    auto np_of = [s](Mesh& t) {
+      return SMR::parameters::relaxation_scheme(s)
+          .vertex_is_constrained_map(t.property_map<Mesh::Vertex_index, bool>("v:fixed").first)
+          .vertex_attribute_maps(std::make_tuple(t.property_map<Mesh::Vertex_index, double>("v:f").first,
+                                                 t.property_map<Mesh::Vertex_index, std::array<double, 6> >("v:g").first));
+    };
+    SMR::relax(a, np_of(a));
+    const auto R = SMR::relaxation_operator(b, np_of(b));
+    R.apply(b, np_of(b));
+    CHECK(smr_test::positions_in_order(a) == smr_test::positions_in_order(b));
+    CHECK(smr_test::positions_in_order(a) != smr_test::positions_in_order(m));
+    auto fa = a.property_map<Mesh::Vertex_index, double>("v:f").first, fb = b.property_map<Mesh::Vertex_index, double>("v:f").first;
+    auto ga = a.property_map<Mesh::Vertex_index, std::array<double, 6> >("v:g").first;
+    auto gb = b.property_map<Mesh::Vertex_index, std::array<double, 6> >("v:g").first;
+    std::size_t moved = 0;
+    for(auto v : vertices(a))
+    {
+      CHECK(fa[v] == fb[v]);
+      CHECK(ga[v] == gb[v]);
+      moved += (fa[v] != f[v]) ? 1 : 0;
+    }
+    CHECK(moved > 0);
+    // the attributes alone, one step: the same again, the positions untouched
+    Mesh c = m, d = m;
+    SMR::relax(c, np_of(c).relax_geometry(false));
+    SMR::relaxation_operator(d, np_of(d)).apply(d, np_of(d).relax_geometry(false));
+    CHECK(smr_test::positions_in_order(c) == smr_test::positions_in_order(m));
+    CHECK(smr_test::positions_in_order(d) == smr_test::positions_in_order(m));
+    auto fc = c.property_map<Mesh::Vertex_index, double>("v:f").first, fd = d.property_map<Mesh::Vertex_index, double>("v:f").first;
+    auto gc = c.property_map<Mesh::Vertex_index, std::array<double, 6> >("v:g").first;
+    auto gd = d.property_map<Mesh::Vertex_index, std::array<double, 6> >("v:g").first;
+    for(auto v : vertices(c))
+    {
+      CHECK(fc[v] == fd[v]);
+      CHECK(gc[v] == gd[v]);
+    }
   }
 }
 

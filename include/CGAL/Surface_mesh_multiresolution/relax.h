@@ -21,6 +21,7 @@
 #include <CGAL/property_map.h>
 
 #include <tuple>
+#include <type_traits>
 #include <vector>
 
 namespace CGAL {
@@ -37,7 +38,7 @@ struct Relaxation_setup
 
   Indexed_mesh<TriangleMesh> mesh;
   std::vector<double> xyz;
-  std::vector<unsigned char> fixed;
+  std::vector<unsigned char> fixed;   // empty: no constrained vertex
   Relaxation_weight_builder builder;
   Relaxation_scheme scheme;
   Geom_traits gt;
@@ -59,17 +60,23 @@ struct Relaxation_setup
 
     build_indexed_mesh(tm, CGAL::get_initialized_vertex_index_map(tm, np), mesh);
     read_coordinates(mesh.vertices, vpm, gt, xyz);
-    fixed.resize(mesh.number_of_vertices());
-    for(std::size_t i = 0; i < fixed.size(); ++i)
-      fixed[i] = get(vcm, mesh.vertices[i]) ? 1 : 0;
+    if(!std::is_same<Vertex_constraint_map, Static_boolean_property_map<vertex_descriptor, false> >::value)
+    {
+      fixed.resize(mesh.number_of_vertices());
+      for(std::size_t i = 0; i < fixed.size(); ++i)
+        fixed[i] = get(vcm, mesh.vertices[i]) ? 1 : 0;
+    }
     builder.set_connectivity(mesh.number_of_vertices(), mesh.triangles);
   }
+
+  // the flags of the constrained rows, or nullptr
+  const unsigned char* constrained() const { return fixed.empty() ? nullptr : fixed.data(); }
 
   // the weights on the coordinates brought to a safe range (geometry_for_computations(): exact, weights unchanged)
   void build(Sparse_weights& w, std::vector<Relaxation_row_rule>& rules)
   {
     std::vector<double> scaled;
-    builder.build(scheme, geometry_for_computations(xyz, scaled).data(), fixed.data(), w, rules);
+    builder.build(scheme, geometry_for_computations(xyz, scaled).data(), constrained(), w, rules);
   }
 };
 
@@ -211,23 +218,50 @@ void relax(TriangleMesh& tm, const NamedParameters& np = parameters::default_val
   if(iterations == 0 || (!geometry && attribute_dimension == 0))
     return;
 
-  internal::Sparse_weights w;
-  std::vector<Relaxation_row_rule> rules;
-  for(unsigned int it = 0; it < iterations; ++it)
+  if((geometry || iterations == 1) && setup.scheme != Relaxation_scheme::SECOND_ORDER_DIFFERENCE)
   {
-    if(it == 0 || geometry)
-      setup.build(w, rules);
-    if(geometry)
+    // every step's weights are used once (new weights for the moved geometry, or one step):
+    // applied as they are computed, not stored
+    std::vector<double> next_xyz(geometry ? setup.xyz.size() : 0), scaled;
+    tmp.resize(attributes.size());
+    for(unsigned int it = 0; it < iterations; ++it)
     {
-      tmp.resize(setup.xyz.size());
-      w.apply(setup.xyz.data(), tmp.data(), 3);
-      setup.xyz.swap(tmp);
-    }
-    if(attribute_dimension > 0)
-    {
-      tmp.resize(attributes.size());
-      w.apply(attributes.data(), tmp.data(), attribute_dimension);
+      const double* x = setup.xyz.data();
+      const double* a = attributes.data();
+      double* y = next_xyz.data();
+      double* b = tmp.data();
+      setup.builder.build_and_apply(setup.scheme, internal::geometry_for_computations(setup.xyz, scaled).data(), setup.constrained(),
+                                    [&](std::size_t i, const internal::Index* col, const double* val, std::size_t length) {
+        if(geometry)
+          internal::Sparse_weights::combine(col, val, length, x, y + 3 * i, 3);
+        if(attribute_dimension > 0)
+          internal::Sparse_weights::combine(col, val, length, a, b + attribute_dimension * i, attribute_dimension);
+      });
+      if(geometry)
+        setup.xyz.swap(next_xyz);
       attributes.swap(tmp);
+    }
+  }
+  else
+  {
+    internal::Sparse_weights w;
+    std::vector<Relaxation_row_rule> rules;
+    for(unsigned int it = 0; it < iterations; ++it)
+    {
+      if(it == 0 || geometry)
+        setup.build(w, rules);
+      if(geometry)
+      {
+        tmp.resize(setup.xyz.size());
+        w.apply(setup.xyz.data(), tmp.data(), 3);
+        setup.xyz.swap(tmp);
+      }
+      if(attribute_dimension > 0)
+      {
+        tmp.resize(attributes.size());
+        w.apply(attributes.data(), tmp.data(), attribute_dimension);
+        attributes.swap(tmp);
+      }
     }
   }
   if(geometry)

@@ -16,6 +16,7 @@
 #include <CGAL/Surface_mesh_multiresolution/Pyramid.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -154,36 +155,52 @@ inline std::string check_level_records(const Pyramid_level& lev, const std::vect
   return std::string();
 }
 
-// (7) for one level, on its face array F (rows of M_k)
-inline std::string check_collapses(const Pyramid_level& lev, const std::vector<Index>& F)
+// (7) and the halfedge part of (6) for one level, on the halfedges of its face array F_k
+// (built with apexes)
+inline std::string check_level_halfedges(const Pyramid_level& lev, const Triangle_halfedges& th)
 {
+  if(th.repeated_directed_edge)                  // (a face that repeats a vertex has a loop edge)
+    return "the faces of a level do not form a halfedge mesh";
   const std::size_t n = lev.number_of_rows();
-  Triangle_halfedges th;
-  th.build(n, F, true);
   std::vector<unsigned char> on_border(n, 0);
   for(std::size_t h = 3 * th.nf; h < th.source.size(); ++h)
     on_border[th.source[h]] = on_border[th.target[h]] = 1;
   std::vector<unsigned char> is_odd;
   odd_row_flags(lev, is_odd);
-  for(std::size_t q = 0; q < lev.odd_rows.size(); ++q)
-  {
+  // the collapses checked in parallel blocks; the refusal reported is that of the first
+  // refused collapse, as a sequential loop finds it
+  static const char* const why[] = {"", "two odd vertices are neighbours", "a collapse target is not a neighbour of its odd vertex",
+                                    "a border vertex collapses off the border", "a collapse breaks the link condition"};
+  auto refusal = [&](std::size_t q) {
     const Index o = lev.odd_rows[q], e = lev.collapse_targets[q];
     Index h = invalid_index;
     for(Index k = th.out_offsets[o]; k < th.out_offsets[o + 1]; ++k)
     {
       if(is_odd[th.out_target[k]])
-        return "two odd vertices are neighbours";
+        return 1;
       if(th.out_target[k] == e) h = th.out[k];
     }
-    if(h == invalid_index) return "a collapse target is not a neighbour of its odd vertex";
-    if(on_border[o] && !th.is_border_edge(h)) return "a border vertex collapses off the border";
-    if(!satisfies_link_condition(th, h, o, e, on_border)) return "a collapse breaks the link condition";
-  }
-  return std::string();
+    if(h == invalid_index) return 2;
+    if(on_border[o] && !th.is_border_edge(h)) return 3;
+    return satisfies_link_condition(th, h, o, e, on_border) ? 0 : 4;
+  };
+  const std::size_t m = lev.odd_rows.size();
+  std::atomic<std::size_t> first(m);
+  parallel_for_blocks(m, [&](std::size_t b, std::size_t e) {
+    for(std::size_t q = b; q < e && q < first.load(std::memory_order_relaxed); ++q)
+      if(refusal(q) != 0)
+      {
+        std::size_t seen = first.load();
+        while(q < seen && !first.compare_exchange_weak(seen, q)) {}
+        return;
+      }
+  });
+  return first.load() < m ? why[refusal(first.load())] : std::string();
 }
 
-// (6) for one level: F holds F_{k+1} (rows of M_{k+1}) and receives F_k
-inline std::string check_and_expand_faces(const Pyramid_level& lev, std::vector<Index>& F)
+// (6) but the halfedges, for one level: F holds F_{k+1} (rows of M_{k+1}) and receives F_k
+// when the records allow its expansion
+inline std::string check_records_and_expand_faces(const Pyramid_level& lev, std::vector<Index>& F)
 {
   const std::size_t n = lev.number_of_rows(), removed = lev.removed_face_positions.size();
   const std::size_t faces = F.size() / 3 + removed;
@@ -221,9 +238,18 @@ inline std::string check_and_expand_faces(const Pyramid_level& lev, std::vector<
       return "a renamed corner did not hold the collapse target of its vertex";
   }
   expand_faces(lev, F);                                   // its other corners come from M_{k+1}: even
-  if(!is_halfedge_face_set(n, F))
-    return "the faces of a level do not form a halfedge mesh";
-  return check_collapses(lev, F);
+  return std::string();
+}
+
+// (6) and (7) for one level: F holds F_{k+1} (rows of M_{k+1}) and receives F_k
+inline std::string check_and_expand_faces(const Pyramid_level& lev, std::vector<Index>& F)
+{
+  std::string why = check_records_and_expand_faces(lev, F);
+  if(!why.empty())
+    return why;
+  Triangle_halfedges th;
+  th.build(lev.number_of_rows(), F, true);
+  return check_level_halfedges(lev, th);
 }
 
 // (1) to (5): the first invariant `pyr` breaks, in words; empty if it holds them all
@@ -259,14 +285,34 @@ std::string check_pyramid_records(const Pyramid<TriangleMesh>& pyr)
   return std::string();
 }
 
+// (6) for F_K, on the rows (2)
+template <typename TriangleMesh>
+std::string check_coarsest_faces(const Pyramid<TriangleMesh>& pyr)
+{
+  const std::size_t n = pyr.vertices(pyr.number_of_levels()).size();
+  const std::vector<Index>& F = pyr.coarse_faces();
+  if(F.size() % 3 != 0 || !all_below(F, n) || !is_halfedge_face_set(n, F))
+    return "the coarsest faces are not a halfedge mesh of the coarsest vertices";
+  return std::string();
+}
+
+// (6) and (7) level by level, for analyse_levels() (level_weights.h) to check each level's
+// faces before it computes weights on them
+struct Level_faces_check
+{
+  std::string records(const Pyramid_level& lev, std::vector<Index>& F) const { return check_records_and_expand_faces(lev, F); }
+  std::string halfedges(const Pyramid_level& lev, const Triangle_halfedges& th) const { return check_level_halfedges(lev, th); }
+};
+
 // (6) and (7), on the rows (2): the first invariant `pyr` breaks, in words; empty if it holds them all
 template <typename TriangleMesh>
 std::string check_pyramid_faces(const Pyramid<TriangleMesh>& pyr)
 {
-  const std::size_t K = pyr.number_of_levels(), n = pyr.vertices(K).size();
+  const std::size_t K = pyr.number_of_levels();
+  const std::string why = check_coarsest_faces(pyr);
+  if(!why.empty())
+    return why;
   std::vector<Index> F = pyr.coarse_faces();
-  if(F.size() % 3 != 0 || !all_below(F, n) || !is_halfedge_face_set(n, F))
-    return "the coarsest faces are not a halfedge mesh of the coarsest vertices";
   for(std::size_t k = K; k-- > 0; )
   {
     const std::string why = check_and_expand_faces(pyr.levels()[k], F);

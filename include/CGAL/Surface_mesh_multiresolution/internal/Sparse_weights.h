@@ -66,30 +66,57 @@ struct Sparse_weights
     });
   }
 
+  // o[0..dimension) = sum_k val[k] in[col[k]] over one row of `length` entries: the arithmetic
+  // of apply(), for rows that are not stored (Relaxation_weight_builder::build_and_apply())
+  static void combine(const Index* col, const double* val, std::size_t length, const double* in, double* o,
+                      std::size_t dimension)
+  {
+    switch(dimension)
+    {
+      case 1: combine_fixed<1>(col, val, length, in, o); break;
+      case 2: combine_fixed<2>(col, val, length, in, o); break;
+      case 3: combine_fixed<3>(col, val, length, in, o); break;
+      case 4: combine_fixed<4>(col, val, length, in, o); break;
+      default: combine_general(col, val, length, in, o, dimension);
+    }
+  }
+
 private:
+  template <std::size_t D>
+  static void combine_fixed(const Index* col, const double* val, std::size_t length, const double* in, double* o)
+  {
+    double acc[D] = {};
+    for(std::size_t k = 0; k < length; ++k)
+    {
+      const double w = val[k];
+      const double* x = in + std::size_t(col[k]) * D;
+      for(std::size_t c = 0; c < D; ++c) acc[c] += w * x[c];
+    }
+    for(std::size_t c = 0; c < D; ++c) o[c] = acc[c];
+  }
+
+  static void combine_general(const Index* col, const double* val, std::size_t length, const double* in, double* o,
+                              std::size_t dimension)
+  {
+    for(std::size_t c = 0; c < dimension; ++c) o[c] = 0.;
+    for(std::size_t k = 0; k < length; ++k)
+    {
+      const double w = val[k];
+      const double* x = in + std::size_t(col[k]) * dimension;
+      for(std::size_t c = 0; c < dimension; ++c) o[c] += w * x[c];
+    }
+  }
+
   template <std::size_t D>
   void row_fixed(std::size_t i, const double* in, double* out) const
   {
-    double acc[D] = {};
-    for(Index k = offsets[i]; k < offsets[i + 1]; ++k)
-    {
-      const double w = values[k];
-      const double* x = in + std::size_t(columns[k]) * D;
-      for(std::size_t c = 0; c < D; ++c) acc[c] += w * x[c];
-    }
-    for(std::size_t c = 0; c < D; ++c) out[i * D + c] = acc[c];
+    combine_fixed<D>(columns.data() + offsets[i], values.data() + offsets[i], offsets[i + 1] - offsets[i], in, out + i * D);
   }
 
   void row_general(std::size_t i, const double* in, double* out, std::size_t dimension) const
   {
-    double* o = out + i * dimension;
-    for(std::size_t c = 0; c < dimension; ++c) o[c] = 0.;
-    for(Index k = offsets[i]; k < offsets[i + 1]; ++k)
-    {
-      const double w = values[k];
-      const double* x = in + std::size_t(columns[k]) * dimension;
-      for(std::size_t c = 0; c < dimension; ++c) o[c] += w * x[c];
-    }
+    combine_general(columns.data() + offsets[i], values.data() + offsets[i], offsets[i + 1] - offsets[i], in,
+                    out + i * dimension, dimension);
   }
 
   template <std::size_t D>

@@ -88,7 +88,9 @@ void build_indexed_mesh(const TriangleMesh& tm, VertexIndexMap vim, Indexed_mesh
       throw std::invalid_argument("face " + std::to_string(face_number) + " (in the order of faces(tm)) is not a triangle: it has "
                                   + std::to_string(degree) + " vertices");
     }
-    const Index a = im.row(source(h0, tm), vim), b = im.row(source(h1, tm), vim), c = im.row(source(h2, tm), vim);
+    // the sources of h0, h1, h2 as the targets of h2, h0, h1 (a halfedge structure stores
+    // targets: a source is the target of the opposite halfedge, one more scattered read)
+    const Index a = im.row(target(h2, tm), vim), b = im.row(target(h0, tm), vim), c = im.row(target(h1, tm), vim);
     if(a == b || b == c || c == a)
       throw std::invalid_argument("face " + std::to_string(face_number) + " (in the order of faces(tm)) repeats a vertex");
     im.triangles.push_back(a);

@@ -16,6 +16,8 @@
 #include <CGAL/Surface_mesh_multiresolution/Pyramid.h>
 
 #include <cmath>
+#include <string>
+#include <type_traits>
 #include <vector>
 
 namespace CGAL {
@@ -58,6 +60,42 @@ public:
   {
     if(stored(lev))
       return lev.weights;
+    m_builder.set_connectivity(lev.number_of_rows(), F);
+    return computed_weights(lev);
+  }
+
+  // of() for a face array not yet known to form a halfedge mesh (a file's): F's halfedges are
+  // built once, with apexes, for check(th) (the reason of a refusal in words, or empty), then
+  // read by the weights, their corners paired from the twins as decompose() pairs them (the
+  // same weights as of(), without its search in the rings: reading the dragon's pyramid built
+  // every level's halfedges twice, once for the checks and once for the weights). nullptr
+  // when check refuses.
+  template <typename Check>
+  const Sparse_weights* checked_of(const Pyramid_level& lev, const std::vector<Index>& F, const Check& check, std::string& error)
+  {
+    if(stored(lev))
+    {
+      Triangle_halfedges th;
+      th.build(lev.number_of_rows(), F, true);
+      error = check(th);
+      return error.empty() ? &lev.weights : nullptr;
+    }
+    m_builder.set_connectivity(lev.number_of_rows(), F, true);
+    error = check(m_builder.connectivity());
+    if(!error.empty())
+      return nullptr;
+    if(m_scheme != Relaxation_scheme::SECOND_ORDER_DIFFERENCE)   // SOD's hinges read the twins
+    {
+      m_builder.pair_corners_from_halfedges();
+      m_builder.keep_outgoing_lists_only();
+    }
+    return &computed_weights(lev);
+  }
+
+private:
+  // the weights of `lev` on the connectivity set in the builder
+  const Sparse_weights& computed_weights(const Pyramid_level& lev)
+  {
     const std::size_t n = lev.number_of_rows();
     m_xyz.resize(3 * n);
     parallel_for_blocks(n, [&](std::size_t first, std::size_t last) {
@@ -68,12 +106,10 @@ public:
           m_xyz[3 * r + c] = m_exponent == 0 ? x : std::scalbn(x, -m_exponent);
         }
     });
-    m_builder.set_connectivity(n, F);
     m_builder.build(m_scheme, m_xyz.data(), nullptr, m_weights, m_rules);
     return m_weights;
   }
 
-private:
   const std::vector<double>& m_positions;
   Relaxation_scheme m_scheme;
   int m_exponent;
@@ -84,37 +120,60 @@ private:
   std::vector<Relaxation_row_rule> m_rules;
 };
 
+// No check of the face arrays: analyse_levels() on a pyramid that holds its invariants
+struct Trusted_faces {};
+
 // The analysis (Eq. 5) of the channels `channels` at every level from their values x[c] on M_0
 // (rows = input numbers; x[c] may be empty for the other channels). The values of M_k are
 // those of its vertices (every level is a subset of the input's vertices), so the levels are
 // taken from the coarsest, their face arrays rebuilt on the way for their weights.
 // done(k, c, details, corrections) receives the result of each level and channel.
-template <typename TriangleMesh, typename Done>
-void analyse_levels(const Pyramid<TriangleMesh>& pyr, const std::vector<std::size_t>& channels,
-                    const std::vector<std::vector<double> >& x, const Done& done)
+// With a FacesCheck other than Trusted_faces (a file's pyramid, the invariants (6) and (7) of
+// Pyramid_checks.h to check), check.records(lev, F) receives F_{k+1} and expands it into F_k
+// and check.halfedges(lev, th) receives the halfedges of F_k, before level k's weights are
+// computed on them; the first refusal is returned, in words, and the levels below are not
+// analysed. Empty when every level was analysed.
+template <typename TriangleMesh, typename Done, typename FacesCheck = Trusted_faces>
+std::string analyse_levels(const Pyramid<TriangleMesh>& pyr, const std::vector<std::size_t>& channels,
+                           const std::vector<std::vector<double> >& x, const Done& done,
+                           const FacesCheck& check = FacesCheck())
 {
+  constexpr bool trusted = std::is_same<FacesCheck, Trusted_faces>::value;
   Level_weights weights(pyr);
   std::vector<Index> F;
-  if(weights.computed())
+  if(weights.computed() || !trusted)
     F = pyr.coarse_faces();
   std::vector<double> f, details;
   Corrections corrections;
   for(std::size_t k = pyr.number_of_levels(); k-- > 0; )
   {
     const Pyramid_level& level = pyr.levels()[k];
-    if(weights.computed())
-      expand_faces(level, F);
-    const Sparse_weights& w = weights.of(level, F);
+    const Sparse_weights* w = nullptr;
+    if constexpr(trusted)
+    {
+      if(weights.computed())
+        expand_faces(level, F);
+      w = &weights.of(level, F);
+    }
+    else
+    {
+      std::string error = check.records(level, F);
+      if(error.empty())
+        w = weights.checked_of(level, F, [&](const Triangle_halfedges& th) { return check.halfedges(level, th); }, error);
+      if(w == nullptr)
+        return "level " + std::to_string(k) + ": " + error;
+    }
     for(std::size_t c : channels)
     {
       const std::size_t dim = pyr.dimensions()[c];
       f.resize(level.vertices.size() * dim);
       for(std::size_t r = 0; r < level.vertices.size(); ++r)
         copy_values(x[c].data() + std::size_t(level.vertices[r]) * dim, dim, f.data() + r * dim);
-      analyse_level(level, w, dim, f, details, corrections);
+      analyse_level(level, *w, dim, f, details, corrections);
       done(k, c, details, corrections);
     }
   }
+  return std::string();
 }
 
 // the values x (dim per input vertex) of the vertices of M_K

@@ -183,22 +183,41 @@ public:
     w.values.resize(w.offsets[n]);
     parallel_for_blocks(n, [&](std::size_t first, std::size_t last) {
       for(std::size_t i = first; i < last; ++i)
+        ring_row(scheme, i, xyz, rules[i], w.columns.data() + w.offsets[i], w.values.data() + w.offsets[i]);
+    });
+  }
+
+  // build() and Sparse_weights::apply() of its weights in one pass, for weights used once
+  // (every step of relax() that moves the geometry): each row is computed into a scratch row
+  // and handed at once to apply_row(i, columns, values, length), which may combine it with
+  // Sparse_weights::combine() (the rows of build(), so the sums of apply(), bit for bit).
+  // The rows are neither stored nor their offsets summed: a one-shot relaxation wrote and read
+  // again 12 bytes per entry. The 1-ring schemes only (SOD rows are assembled sequentially).
+  template <typename ApplyRow>
+  void build_and_apply(Relaxation_scheme scheme, const double* xyz, const unsigned char* fixed, const ApplyRow& apply_row)
+  {
+    CGAL_precondition(scheme != Relaxation_scheme::SECOND_ORDER_DIFFERENCE);
+    corners();
+    if(scheme != Relaxation_scheme::UNIFORM)
+      compute_cotangents(xyz);
+    parallel_for_blocks(m_n, [&](std::size_t first, std::size_t last) {
+      std::vector<std::pair<Index, Index> > sorted;   // long rings only
+      std::vector<Index> col;
+      std::vector<double> val;
+      for(std::size_t i = first; i < last; ++i)
       {
-        Index* col = w.columns.data() + w.offsets[i];
-        double* val = w.values.data() + w.offsets[i];
-        if(rules[i] == Relaxation_row_rule::FIXED)
+        Relaxation_row_rule rule = m_paired ? rule_of_paired_ring(i, fixed) : match_ring(i, fixed, sorted);
+        const std::size_t length = ring_row_length(i, rule);
+        if(col.size() < length)
         {
-          *col = static_cast<Index>(i);
-          *val = 1.;
+          col.resize(2 * length);
+          val.resize(2 * length);
         }
-        else if(rules[i] == Relaxation_row_rule::BORDER)
-          border_weights(scheme, i, xyz, ring_border_columns(i, col), col, val);
-        else if(scheme == Relaxation_scheme::UNIFORM)
-          uniform_ring_row(i, col, val);
-        else
-          rules[i] = curvature_ring_row(i, col, val);
+        ring_row(scheme, i, xyz, rule, col.data(), val.data());
+        apply_row(i, col.data(), val.data(), length);
       }
     });
+    m_paired = true;
   }
 
 private:
@@ -411,6 +430,23 @@ private:
       *col++ = target_of_corner(k);
       *val++ = v;
     }
+  }
+
+  // row i of a 1-ring scheme, of ring_row_length(i, rule) entries; rule: FIXED, BORDER or
+  // SCHEME from the pairing, refined by the normalisation of a curvature row
+  void ring_row(Relaxation_scheme scheme, std::size_t i, const double* xyz, Relaxation_row_rule& rule, Index* col, double* val) const
+  {
+    if(rule == Relaxation_row_rule::FIXED)
+    {
+      *col = static_cast<Index>(i);
+      *val = 1.;
+    }
+    else if(rule == Relaxation_row_rule::BORDER)
+      border_weights(scheme, i, xyz, ring_border_columns(i, col), col, val);
+    else if(scheme == Relaxation_scheme::UNIFORM)
+      uniform_ring_row(i, col, val);
+    else
+      rule = curvature_ring_row(i, col, val);
   }
 
   Relaxation_row_rule curvature_ring_row(std::size_t i, Index* col, double* val) const
