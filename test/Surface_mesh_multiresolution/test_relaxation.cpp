@@ -69,6 +69,22 @@ void check_rows_are_affine_combinations(const SMR::Relaxation_operator<TM>& R)
   }
 }
 
+// awkward rings for the pairing of a vertex's corners: a jittered grid (border rows), a fan of
+// 40 triangles (a ring longer than 32 corners: the sorted search) and an isolated vertex
+Mesh awkward_rings()
+{
+  Mesh m = smr_test::planar_grid<Mesh>(8, 0.2);
+  const double pi = 3.14159265358979323846;
+  const auto centre = m.add_vertex(Point_3(20, 0, 0.3));
+  std::vector<Mesh::Vertex_index> rim;
+  for(int k = 0; k < 40; ++k)
+    rim.push_back(m.add_vertex(Point_3(20 + std::cos(2 * pi * k / 40), std::sin(2 * pi * k / 40), 0.1 * (k % 3))));
+  for(int k = 0; k < 40; ++k)
+    m.add_face(centre, rim[k], rim[(k + 1) % 40]);
+  m.add_vertex(Point_3(5, 5, 5));
+  return m;
+}
+
 } // namespace
 
 TEST_CASE("every scheme is a partition of unity with finite weights", "[relaxation][unity]")
@@ -392,20 +408,9 @@ TEST_CASE("several relaxation steps: relax() and the stored operator agree", "[r
 TEST_CASE("several relaxation steps in one call read the first step's ring pairing: the same bits as one step per call",
           "[relaxation][iterations]")
 {
-  // awkward rings for the pairing: a jittered grid (border rows), a fan of 40
-  // triangles (a ring longer than 32 corners: the sorted search), an isolated vertex, and
-  // constrained rows, which a later step of the same call pairs from the first one
-  Mesh m = smr_test::planar_grid<Mesh>(8, 0.2);
-  {
-    const double pi = 3.14159265358979323846;
-    const auto centre = m.add_vertex(Point_3(20, 0, 0.3));
-    std::vector<Mesh::Vertex_index> rim;
-    for(int k = 0; k < 40; ++k)
-      rim.push_back(m.add_vertex(Point_3(20 + std::cos(2 * pi * k / 40), std::sin(2 * pi * k / 40), 0.1 * (k % 3))));
-    for(int k = 0; k < 40; ++k)
-      m.add_face(centre, rim[k], rim[(k + 1) % 40]);
-    m.add_vertex(Point_3(5, 5, 5));
-  }
+  // awkward rings for the pairing, and constrained rows, which a later step of the same call
+  // pairs from the first one
+  Mesh m = awkward_rings();
   auto constrained = m.add_property_map<Mesh::Vertex_index, bool>("v:fixed", false).first;
   std::size_t k = 0;
   for(auto v : vertices(m)) constrained[v] = (k++ % 7 == 3);
@@ -424,20 +429,10 @@ TEST_CASE("several relaxation steps in one call read the first step's ring pairi
 
 TEST_CASE("a relax() step applies its weights as it computes them: the stored operator's bits", "[relaxation][iterations]")
 {
-  // the same awkward rings as above; positions and two attribute channels of 1 + 6 values
+  // awkward rings and constrained rows; positions and two attribute channels of 1 + 6 values
   // (a combined dimension of 7: the general row sum) relaxed by one step of relax() and by
   // the operator computed on the same mesh and applied to it
-  Mesh m = smr_test::planar_grid<Mesh>(8, 0.2);
-  {
-    const double pi = 3.14159265358979323846;
-    const auto centre = m.add_vertex(Point_3(20, 0, 0.3));
-    std::vector<Mesh::Vertex_index> rim;
-    for(int k = 0; k < 40; ++k)
-      rim.push_back(m.add_vertex(Point_3(20 + std::cos(2 * pi * k / 40), std::sin(2 * pi * k / 40), 0.1 * (k % 3))));
-    for(int k = 0; k < 40; ++k)
-      m.add_face(centre, rim[k], rim[(k + 1) % 40]);
-    m.add_vertex(Point_3(5, 5, 5));
-  }
+  Mesh m = awkward_rings();
   auto constrained = m.add_property_map<Mesh::Vertex_index, bool>("v:fixed", false).first;
   auto f = m.add_property_map<Mesh::Vertex_index, double>("v:f", 0.).first;
   auto g = m.add_property_map<Mesh::Vertex_index, std::array<double, 6> >("v:g").first;
