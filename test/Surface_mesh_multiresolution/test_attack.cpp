@@ -140,6 +140,17 @@ void use_fully(const SMR::Pyramid<Mesh>& pyr)
   std::string error;
   REQUIRE(read_bytes(bytes_of(pyr), back, error));
   REQUIRE(bytes_of(back) == bytes_of(pyr));
+  // (the file holds values where the details are their analysis: the reader's analysis, on
+  // the halfedges its checks built, gives the decomposition's details bit for bit)
+  for(std::size_t j = 1; j <= K; ++j)
+    for(std::size_t c = 0; c < pyr.number_of_channels(); ++c)
+    {
+      const std::vector<double>& a = static_cast<const SMR::Pyramid<Mesh>&>(back).details(j, c);
+      const std::vector<double>& b = pyr.details(j, c);
+      REQUIRE(a.size() == b.size());
+      CHECK(std::memcmp(a.data(), b.data(), 8 * a.size()) == 0);
+      CHECK(back.levels()[j - 1].corrections[c] == pyr.levels()[j - 1].corrections[c]);
+    }
 }
 
 } // namespace
