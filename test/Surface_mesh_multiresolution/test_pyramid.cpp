@@ -583,6 +583,18 @@ TEST_CASE("stored weights are the relaxation operators of the levels and change 
       SMR::reconstruct(pyr, before[k], SMR::parameters::level(k));
     std::stringstream file_before(std::ios::in | std::ios::out | std::ios::binary);
     REQUIRE(SMR::IO::write_pyramid(file_before, pyr));
+    // of an enhanced pyramid, whose reconstruction is no input position: the rows computed
+    // as they are applied (one channel) give the stored weights' sums, bit for bit
+    {
+      SMR::Pyramid<Mesh> enhanced = pyr;
+      SMR::enhance(enhanced, 1, 2, 1.5);
+      Mesh as_applied, stored;
+      SMR::reconstruct(enhanced, as_applied);
+      SMR::store_weights(enhanced);
+      SMR::reconstruct(enhanced, stored);
+      CHECK(smr_test::positions_in_order(as_applied) == smr_test::positions_in_order(stored));
+      CHECK(smr_test::positions_in_order(as_applied) != smr_test::positions_in_order(m));
+    }
 
     SMR::store_weights(pyr);
     CHECK(SMR::internal::check_pyramid(pyr).empty());

@@ -10,6 +10,7 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <random>
@@ -21,6 +22,20 @@ using smr_tool::Mesh;
 using smr_tool::Point;
 
 namespace {
+
+// Each test case works in a directory of its own under the working directory: CTest runs the
+// cases as parallel processes, which wrote and read the same file names (sphere.ply,
+// smr_stderr.txt) at the same time and sometimes read each other's files.
+struct Own_directory
+{
+  std::filesystem::path previous;
+  explicit Own_directory(const std::string& name) : previous(std::filesystem::current_path())
+  {
+    std::filesystem::create_directories(name);
+    std::filesystem::current_path(name);
+  }
+  ~Own_directory() { std::filesystem::current_path(previous); }
+};
 
 struct Run { int status; std::string err; };
 
@@ -65,6 +80,7 @@ void write_coloured_sphere(const std::string& file, int subdivisions)
 
 TEST_CASE("decompose then reconstruct gives the PLY back byte for byte, channels included", "[tool]")
 {
+  const Own_directory here("round_trip");
   write_coloured_sphere("sphere.ply", 3);
   REQUIRE(smr("decompose sphere.ply -o sphere.smrp").status == 0);
   REQUIRE(smr("reconstruct sphere.smrp -o sphere0.ply").status == 0);
@@ -83,6 +99,7 @@ TEST_CASE("decompose then reconstruct gives the PLY back byte for byte, channels
 
 TEST_CASE("a level of detail keeps input vertices with their exact colours and scalars", "[tool]")
 {
+  const Own_directory here("lod");
   write_coloured_sphere("sphere.ply", 4);
   const smr_tool::Scan in = smr_tool::read_scan("sphere.ply");
   for(const char* guide : {"", "--guide color"})
@@ -111,6 +128,7 @@ TEST_CASE("a level of detail keeps input vertices with their exact colours and s
 
 TEST_CASE("triangle strips are expanded with a consistent orientation", "[tool]")
 {
+  const Own_directory here("strips");
   // a 4 x 3 grid of vertices as two strips (rows), the second restarted with -1 in one list
   std::string ply = "ply\nformat ascii 1.0\nelement vertex 12\nproperty float x\nproperty float y\nproperty float z\n"
                     "element tristrips 1\nproperty list int int vertex_indices\nend_header\n";
@@ -138,6 +156,7 @@ TEST_CASE("triangle strips are expanded with a consistent orientation", "[tool]"
 
 TEST_CASE("a polygon soup (STL) is welded, a pinched surface is split, unreferenced vertices go: all said", "[tool]")
 {
+  const Own_directory here("soup");
   // an octahedron as an STL soup: 8 triangles, 24 corners, 6 distinct positions
   const Point p[6] = {Point(1, 0, 0), Point(-1, 0, 0), Point(0, 1, 0), Point(0, -1, 0), Point(0, 0, 1), Point(0, 0, -1)};
   const int t[8][3] = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4}, {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
@@ -174,6 +193,7 @@ TEST_CASE("a polygon soup (STL) is welded, a pinched surface is split, unreferen
 
 TEST_CASE("bad files and arguments: a message, a non-zero status, no output file", "[tool][input]")
 {
+  const Own_directory here("bad_input");
   const std::string header = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
                              "element face 1\nproperty list uchar int vertex_indices\nend_header\n";
   write_text("bad_index.ply", header + "0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n");
@@ -238,6 +258,7 @@ TEST_CASE("bad files and arguments: a message, a non-zero status, no output file
 
 TEST_CASE("seeded fuzzing of the PLY reader: every mutated file is read into a valid mesh or refused with a message", "[tool][input][fuzz]")
 {
+  const Own_directory here("fuzz");
   // binary and ASCII, faces and strips; bytes flipped, truncated, header words changed
   write_coloured_sphere("fuzz_base.ply", 1);
   std::ifstream is("fuzz_base.ply", std::ios::binary);

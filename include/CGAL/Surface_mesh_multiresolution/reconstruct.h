@@ -245,8 +245,18 @@ void reconstruct_values(const Pyramid<TriangleMesh>& pyr, std::size_t level, Val
     const Pyramid_level& lev = pyr.levels()[k];
     if(weights.computed())
       expand_faces(lev, ws.faces);
-    const Sparse_weights& w = weights.of(lev, ws.faces);
     odd_row_flags(lev, ws.is_odd);
+    if(nc == 1 && weights.rows_computable_as_applied(lev))
+    {
+      // one channel: each row is applied once, as it is computed
+      const std::size_t dim = pyr.dimensions()[0];
+      spread_to_level(lev, dim, ws.values[0].data(), ws.state);
+      synthesize_level(lev, weights.rows_as_applied(lev, ws.faces), dim, lev.details[0].data(), lev.corrections[0], ws.is_odd,
+                       ws.state, ws.prediction);
+      ws.values[0].swap(ws.state);
+      continue;
+    }
+    const Sparse_weights& w = weights.of(lev, ws.faces);
     for(std::size_t c = 0; c < nc; ++c)
     {
       const std::size_t dim = pyr.dimensions()[c];

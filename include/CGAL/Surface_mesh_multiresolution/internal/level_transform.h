@@ -108,9 +108,11 @@ inline void odd_row_flags(const Pyramid_level& lev, std::vector<unsigned char>& 
     is_odd[r] = 1;
 }
 
-// Eq. 6 then Eq. 7 on the rows of M_k with the weights w: `state` comes from spread_to_level();
-// on return, the values of M_k. is_odd: odd_row_flags() of the level.
-inline void synthesize_level(const Pyramid_level& lev, const Sparse_weights& w, std::size_t dim, const double* d,
+// Eq. 6 then Eq. 7 on the rows of M_k with the weights w (Sparse_weights, or any class with
+// its apply_row_list(): Level_weights::Rows_as_applied), each row applied once: `state` comes
+// from spread_to_level(); on return, the values of M_k. is_odd: odd_row_flags() of the level.
+template <typename Weights>
+void synthesize_level(const Pyramid_level& lev, const Weights& w, std::size_t dim, const double* d,
                              const Corrections& corrections, const std::vector<unsigned char>& is_odd,
                              std::vector<double>& state, std::vector<double>& prediction)
 {

@@ -92,9 +92,52 @@ public:
     return &computed_weights(lev);
   }
 
+  // The weights of a level computed row by row as they are applied, for a level whose rows
+  // are each used once (the synthesis of a single channel: the odd rows, then the even ones):
+  // apply_row_list() as Sparse_weights has it, with the same rows and sums, bit for bit,
+  // without storing them (a reconstruction's weights were written and read again, 12 bytes per
+  // entry, with a sequential prefix sum of the rows). Valid until the next call of the
+  // Level_weights it comes from; each row applied at most once.
+  class Rows_as_applied
+  {
+  public:
+    Rows_as_applied(Relaxation_weight_builder& builder, Relaxation_scheme scheme, const double* xyz)
+      : m_builder(&builder), m_scheme(scheme), m_xyz(xyz)
+    {}
+
+    void apply_row_list(const double* in, double* out, std::size_t dimension, const Index* rows, std::size_t count) const
+    {
+      m_builder->apply_rows(m_scheme, m_xyz, nullptr, rows, count,
+                            [&](std::size_t i, const Index* col, const double* val, std::size_t length) {
+        Sparse_weights::combine(col, val, length, in, out + i * dimension, dimension);
+      });
+    }
+
+  private:
+    Relaxation_weight_builder* m_builder;
+    Relaxation_scheme m_scheme;
+    const double* m_xyz;
+  };
+
+  // whether rows_as_applied() serves `lev` (weights computed, a 1-ring scheme)
+  bool rows_computable_as_applied(const Pyramid_level& lev) const
+  {
+    return !stored(lev) && m_scheme != Relaxation_scheme::SECOND_ORDER_DIFFERENCE;
+  }
+
+  // the weights of `lev` (rows_computable_as_applied()), whose face array is F, row by row
+  Rows_as_applied rows_as_applied(const Pyramid_level& lev, const std::vector<Index>& F)
+  {
+    CGAL_precondition(rows_computable_as_applied(lev));
+    m_builder.set_connectivity(lev.number_of_rows(), F);
+    scale_positions(lev);
+    m_builder.prepare_rows(m_scheme, m_xyz.data());
+    return Rows_as_applied(m_builder, m_scheme, m_xyz.data());
+  }
+
 private:
-  // the weights of `lev` on the connectivity set in the builder
-  const Sparse_weights& computed_weights(const Pyramid_level& lev)
+  // m_xyz: the positions of `lev`'s rows, scaled as decompose() scales them
+  void scale_positions(const Pyramid_level& lev)
   {
     const std::size_t n = lev.number_of_rows();
     m_xyz.resize(3 * n);
@@ -106,6 +149,12 @@ private:
           m_xyz[3 * r + c] = m_exponent == 0 ? x : std::scalbn(x, -m_exponent);
         }
     });
+  }
+
+  // the weights of `lev` on the connectivity set in the builder
+  const Sparse_weights& computed_weights(const Pyramid_level& lev)
+  {
+    scale_positions(lev);
     m_builder.build(m_scheme, m_xyz.data(), nullptr, m_weights, m_rules);
     return m_weights;
   }

@@ -196,16 +196,35 @@ public:
   template <typename ApplyRow>
   void build_and_apply(Relaxation_scheme scheme, const double* xyz, const unsigned char* fixed, const ApplyRow& apply_row)
   {
+    prepare_rows(scheme, xyz);
+    apply_rows(scheme, xyz, fixed, nullptr, m_n, apply_row);
+    m_paired = true;
+  }
+
+  // build_and_apply() in parts, for rows used once each but in several passes (the synthesis
+  // of a level: its odd rows, then its even rows): prepare_rows() lists the corners and
+  // computes the cotangents, apply_rows() computes the rows rows[0..count) (all rows when
+  // `rows` is nullptr), pairing their rings, and hands each to apply_row(). Every row at most
+  // once per prepare_rows().
+  void prepare_rows(Relaxation_scheme scheme, const double* xyz)
+  {
     CGAL_precondition(scheme != Relaxation_scheme::SECOND_ORDER_DIFFERENCE);
     corners();
     if(scheme != Relaxation_scheme::UNIFORM)
       compute_cotangents(xyz);
-    parallel_for_blocks(m_n, [&](std::size_t first, std::size_t last) {
+  }
+
+  template <typename ApplyRow>
+  void apply_rows(Relaxation_scheme scheme, const double* xyz, const unsigned char* fixed, const Index* rows, std::size_t count,
+                  const ApplyRow& apply_row)
+  {
+    parallel_for_blocks(count, [&](std::size_t first, std::size_t last) {
       std::vector<std::pair<Index, Index> > sorted;   // long rings only
       std::vector<Index> col;
       std::vector<double> val;
-      for(std::size_t i = first; i < last; ++i)
+      for(std::size_t q = first; q < last; ++q)
       {
+        const std::size_t i = rows == nullptr ? q : std::size_t(rows[q]);
         Relaxation_row_rule rule = m_paired ? rule_of_paired_ring(i, fixed) : match_ring(i, fixed, sorted);
         const std::size_t length = ring_row_length(i, rule);
         if(col.size() < length)
@@ -217,7 +236,6 @@ public:
         apply_row(i, col.data(), val.data(), length);
       }
     });
-    m_paired = true;
   }
 
 private:
