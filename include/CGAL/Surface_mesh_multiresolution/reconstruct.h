@@ -200,8 +200,8 @@ void reconstruct_faces(const Pyramid<TriangleMesh>& pyr, std::size_t level, std:
 }
 
 // The buffers of the values' reconstruction, reserved at their largest size by reserve(), so
-// that the reconstruction itself allocates nothing (it may run on another thread: see
-// run_beside()).
+// that the reconstruction allocates none of its large buffers itself (it may run on another
+// thread: see run_beside(); the weights' builder and its rows' scratch still allocate there).
 struct Values_workspace
 {
   std::vector<std::vector<double> > values;   // per channel, rows of the current level

@@ -113,8 +113,8 @@ inline void odd_row_flags(const Pyramid_level& lev, std::vector<unsigned char>& 
 // from spread_to_level(); on return, the values of M_k. is_odd: odd_row_flags() of the level.
 template <typename Weights>
 void synthesize_level(const Pyramid_level& lev, const Weights& w, std::size_t dim, const double* d,
-                             const Corrections& corrections, const std::vector<unsigned char>& is_odd,
-                             std::vector<double>& state, std::vector<double>& prediction)
+                      const Corrections& corrections, const std::vector<unsigned char>& is_odd,
+                      std::vector<double>& state, std::vector<double>& prediction)
 {
   prediction.resize(state.size());
   // Eq. 6: odd vertices (corrected before the even vertices read them)
