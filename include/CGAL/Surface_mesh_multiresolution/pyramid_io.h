@@ -424,14 +424,17 @@ bool read_payload_v3(Byte_reader& r, Pyramid<TriangleMesh>& p, std::string& erro
   Pyramid_access::coarse_values(p).resize(nc);
   // the faces must form halfedge meshes before weights are computed on them: each level's
   // are checked, on the halfedges its weights are then computed on, before its analysis
-  error = check_coarsest_faces(p);
-  if(error.empty() && analysed.empty())
+  if(analysed.empty())
     error = check_pyramid_faces(p);
-  else if(error.empty())
-    error = analyse_levels(p, analysed, values, [&](std::size_t k, std::size_t c, std::vector<double>& d, Corrections& corr) {
-      L[k].details[c].swap(d);
-      L[k].corrections[c].swap(corr);
-    }, Level_faces_check());
+  else
+  {
+    error = check_coarsest_faces(p);
+    if(error.empty())
+      error = analyse_levels(p, analysed, values, [&](std::size_t k, std::size_t c, std::vector<double>& d, Corrections& corr) {
+        L[k].details[c].swap(d);
+        L[k].corrections[c].swap(corr);
+      }, Level_faces_check());
+  }
   if(!error.empty())
     return false;
   for(std::size_t c : analysed)
