@@ -20,6 +20,7 @@
 #include <array>
 #include <functional>
 #include <map>
+#include <numeric>
 #include <random>
 #include <set>
 #include <sstream>
@@ -383,6 +384,149 @@ TEST_CASE("decomposition is deterministic: runs with all threads, with four (par
       CHECK(x->levels()[k].corrections[0] == b.levels()[k].corrections[0]);
     }
     CHECK(x->coarse_faces() == b.coarse_faces());
+  }
+}
+
+namespace {
+
+// a copy of m with vertex v numbered number[v], the faces in the same order with the same
+// first corners
+Mesh renumbered(const Mesh& m, const std::vector<std::size_t>& number)
+{
+  std::vector<Mesh::Vertex_index> old_of(num_vertices(m));
+  for(auto v : vertices(m))
+    old_of[number[v]] = v;
+  Mesh r;
+  for(auto v : old_of)
+    r.add_vertex(m.point(v));
+  auto st = r.add_property_map<Mesh::Vertex_index, double>("v:scalar").first;
+  auto sm = m.property_map<Mesh::Vertex_index, double>("v:scalar").first;
+  for(auto v : vertices(m))
+    st[Mesh::Vertex_index(number[v])] = sm[v];
+  for(auto f : faces(m))
+  {
+    std::vector<Mesh::Vertex_index> c;
+    for(auto v : vertices_around_face(halfedge(f, m), m))
+      c.push_back(Mesh::Vertex_index(number[v]));
+    const auto g = r.add_face(c);
+    REQUIRE(g != Mesh::null_face());
+    REQUIRE(target(halfedge(g, r), r) == Mesh::Vertex_index(number[target(halfedge(f, m), m)]));
+  }
+  return r;
+}
+
+// b is a's pyramid with every input vertex v named number[v]: the same levels, details and
+// corrections bit for bit, the same collapses and face records
+void check_same_pyramid_renumbered(const SMR::Pyramid<Mesh>& a, const SMR::Pyramid<Mesh>& b, const std::vector<std::size_t>& number)
+{
+  REQUIRE(a.number_of_levels() == b.number_of_levels());
+  REQUIRE(a.number_of_levels() > 3);
+  auto rows_of_b = [&](std::size_t k) {
+    std::vector<std::size_t> r(number.size(), std::size_t(-1));
+    for(std::size_t i = 0; i < b.vertices(k).size(); ++i)
+      r[b.vertices(k)[i]] = i;
+    return r;
+  };
+  for(std::size_t k = 0; k <= a.number_of_levels(); ++k)
+  {
+    REQUIRE(a.vertices(k).size() == b.vertices(k).size());
+    const std::vector<std::size_t> row_b = rows_of_b(k);
+    std::vector<std::size_t> to_b(a.vertices(k).size());   // row of a -> row of b
+    for(std::size_t i = 0; i < to_b.size(); ++i)
+    {
+      to_b[i] = row_b[number[a.vertices(k)[i]]];
+      REQUIRE(to_b[i] != std::size_t(-1));
+    }
+    if(k == a.number_of_levels())
+    {
+      for(std::size_t c = 0; c < a.number_of_channels(); ++c)
+      {
+        const std::size_t d = a.channel_dimension(c);
+        for(std::size_t i = 0; i < to_b.size(); ++i)
+          CHECK(std::memcmp(&a.coarse_values()[c][d * i], &b.coarse_values()[c][d * to_b[i]], 8 * d) == 0);
+      }
+      std::vector<std::size_t> faces_a;
+      for(auto v : a.coarse_faces()) faces_a.push_back(to_b[v]);
+      CHECK(faces_a == std::vector<std::size_t>(b.coarse_faces().begin(), b.coarse_faces().end()));
+      break;
+    }
+    const auto& la = a.levels()[k];
+    const auto& lb = b.levels()[k];
+    for(std::size_t c = 0; c < a.number_of_channels(); ++c)
+    {
+      const std::size_t d = a.channel_dimension(c);
+      std::size_t differing = 0;
+      for(std::size_t i = 0; i < to_b.size(); ++i)
+        differing += std::memcmp(&la.details[c][d * i], &lb.details[c][d * to_b[i]], 8 * d) != 0;
+      CHECK(differing == 0);
+      std::vector<std::pair<std::size_t, double> > corrections_a, corrections_b;
+      for(const auto& x : la.corrections[c])
+        corrections_a.emplace_back(d * to_b[x.first / d] + x.first % d, x.second);
+      for(const auto& x : lb.corrections[c])
+        corrections_b.emplace_back(x.first, x.second);
+      std::sort(corrections_a.begin(), corrections_a.end());
+      CHECK(std::is_sorted(lb.corrections[c].begin(), lb.corrections[c].end()));
+      CHECK(corrections_a == corrections_b);
+    }
+    std::map<std::size_t, std::size_t> target_a, target_b;   // odd vertex -> target, b's input numbers
+    for(std::size_t q = 0; q < la.odd_rows.size(); ++q)
+      target_a[number[la.vertices[la.odd_rows[q]]]] = number[la.vertices[la.collapse_targets[q]]];
+    for(std::size_t q = 0; q < lb.odd_rows.size(); ++q)
+      target_b[lb.vertices[lb.odd_rows[q]]] = lb.vertices[lb.collapse_targets[q]];
+    CHECK(target_a == target_b);
+    CHECK(la.removed_face_positions == lb.removed_face_positions);
+    std::vector<std::size_t> removed_a;
+    for(auto v : la.removed_faces) removed_a.push_back(to_b[v]);
+    CHECK(removed_a == std::vector<std::size_t>(lb.removed_faces.begin(), lb.removed_faces.end()));
+    std::map<std::size_t, std::size_t> renamed_a, renamed_b;   // corner -> odd vertex, b's rows
+    for(std::size_t q = 0; q < la.renamed_corners.size(); ++q)
+      renamed_a[la.renamed_corners[q]] = to_b[la.renamed_vertices[q]];
+    for(std::size_t q = 0; q < lb.renamed_corners.size(); ++q)
+      renamed_b[lb.renamed_corners[q]] = lb.renamed_vertices[q];
+    CHECK(renamed_a == renamed_b);
+  }
+}
+
+} // namespace
+
+// Nothing decompose() computes depends on how the input numbers its vertices (rings are
+// listed in face order, candidates are named by halfedge, ties never broken by vertex number):
+// renumbering the input renames the pyramid's vertices and changes no bit of anything else
+// (design notes: what a locality reordering of the vertices may rely on)
+TEST_CASE("the pyramid does not depend on how the input numbers its vertices", "[pyramid][determinism]")
+{
+  Mesh grid = smr_test::planar_grid<Mesh>(30, 0.3);   // borders
+  CGAL::Random rng(11);
+  for(auto v : vertices(grid))
+    grid.point(v) = grid.point(v) + Vector_3(0, 0, rng.get_double(-.05, .05));
+  Mesh meshes[] = {smr_test::icosphere<Mesh>(3), grid};   // Loop subdivision numbers new vertices by edge
+  for(Mesh& m : meshes)
+  {
+    auto scalar = m.add_property_map<Mesh::Vertex_index, double>("v:scalar").first;
+    for(auto v : vertices(m))   // a channel of dimension 1 with corrections
+      scalar[v] = 1e-3 * m.point(v).x() * m.point(v).y() - 273.15 + 1e5 * m.point(v).z();
+    std::vector<std::size_t> shuffled(num_vertices(m)), reversed(num_vertices(m));
+    std::iota(shuffled.begin(), shuffled.end(), std::size_t(0));
+    std::shuffle(shuffled.begin(), shuffled.end(), std::mt19937(5));
+    for(std::size_t i = 0; i < reversed.size(); ++i)
+      reversed[i] = reversed.size() - 1 - i;
+    for(const SMR::Relaxation_scheme scheme : {SMR::Relaxation_scheme::CURVATURE, SMR::Relaxation_scheme::UNIFORM,
+                                               SMR::Relaxation_scheme::SECOND_ORDER_DIFFERENCE})
+    {
+      const auto a = SMR::decompose(m, SMR::parameters::relaxation_scheme(scheme).vertex_attribute_maps(std::make_tuple(scalar)));
+      std::size_t corrections = 0;
+      for(const auto& l : a.levels())
+        corrections += l.corrections[0].size() + l.corrections[1].size();
+      CHECK(corrections > 0);
+      for(const auto* number : {&shuffled, &reversed})
+      {
+        const Mesh r = renumbered(m, *number);
+        auto rs = r.property_map<Mesh::Vertex_index, double>("v:scalar").first;
+        const auto b = SMR::decompose(r, SMR::parameters::relaxation_scheme(scheme).vertex_attribute_maps(std::make_tuple(rs)));
+        check_same_pyramid_renumbered(a, b, *number);
+        check_exact_round_trip(r, b);
+      }
+    }
   }
 }
 
