@@ -957,7 +957,7 @@ TEST_CASE("the candidates' radix sort orders by (cost, halfedge) like a comparis
     constexpr std::uint64_t refused = ~std::uint64_t(0);
     for(std::size_t wanted : {std::size_t(0), std::size_t(1), cost_of.size() / 7, cost_of.size() / 2, cost_of.size()})
     {
-      std::vector<std::uint64_t> m;
+      SMR::internal::Key_array m;
       for(std::size_t i = 0; i < c.size(); ++i)
       {
         if(i % 5 == 2)
@@ -966,7 +966,7 @@ TEST_CASE("the candidates' radix sort orders by (cost, halfedge) like a comparis
       }
       std::size_t total = 0;
       std::uint64_t limit = 0;
-      std::vector<std::uint64_t> front = SMR::internal::cheapest_keys(m, key, refused, wanted, total, limit);
+      SMR::internal::Key_array front = SMR::internal::cheapest_keys(m, key, refused, wanted, total, limit);
       CHECK(total == c.size());
       CHECK(front.size() >= (std::min)(wanted, c.size()));
       for(std::uint64_t x : front)
@@ -1133,7 +1133,8 @@ TEST_CASE("the corners listed by source in parallel ranges are those of the sequ
   for(int f = 0; f < 100000; ++f)
     for(int c = 0; c < 3; ++c)
       tri.push_back(static_cast<Index>(rng.get_int(0, int(n))));
-  std::vector<Index> offsets, out, target, apex;
+  std::vector<Index> offsets;
+  SMR::internal::Index_array out, target, apex;
   SMR::internal::list_face_halfedges_by_source(n, tri, true, offsets, out, target, apex);
   // the reference: corners in increasing halfedge number within each source
   REQUIRE(offsets.size() == n + 1);
@@ -1153,7 +1154,8 @@ TEST_CASE("the corners listed by source in parallel ranges are those of the sequ
   for(int threads : {3, 8})   // other numbers of ranges: the same lists
   {
     tbb::task_arena arena(threads);
-    std::vector<Index> o2, out2, t2, a2;
+    std::vector<Index> o2;
+    SMR::internal::Index_array out2, t2, a2;
     arena.execute([&] { SMR::internal::list_face_halfedges_by_source(n, tri, true, o2, out2, t2, a2); });
     CHECK(o2 == offsets);
     CHECK(out2 == out);

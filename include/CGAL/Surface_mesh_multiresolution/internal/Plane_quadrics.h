@@ -9,10 +9,12 @@
 #define CGAL_SURFACE_MESH_MULTIRESOLUTION_INTERNAL_PLANE_QUADRICS_H
 
 #include <CGAL/Surface_mesh_multiresolution/internal/config.h>
+#include <CGAL/Surface_mesh_multiresolution/internal/helpers.h>
 #include <CGAL/Surface_mesh_multiresolution/internal/indexed_mesh.h>
 #include <CGAL/Surface_mesh_multiresolution/internal/parallel.h>
 #include <CGAL/Surface_mesh_multiresolution/internal/Triangle_halfedges.h>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -44,7 +46,7 @@ public:
   void initialize(const Triangle_halfedges& th, const std::vector<double>& xyz)
   {
     m_xyz = xyz.data();
-    m_q.assign(size * th.n, 0.);
+    m_q.resize(size * th.n);                           // each row zeroed by its own task below
     // Each vertex adds the quadrics of its faces and of the border edges at it in the order
     // of a loop over the faces (a face's plane, then the border edges of its halfedges h0,
     // h0 + 1, h0 + 2 as they come): the sums of that sequential loop, bit for bit, in parallel
@@ -56,6 +58,7 @@ public:
       for(std::size_t v = first; v < last; ++v)
       {
         const Index row = static_cast<Index>(v);
+        std::fill(m_q.data() + size * v, m_q.data() + size * (v + 1), 0.);
         for(Index k = th.out_offsets[v]; k < th.out_offsets[v + 1]; ++k)
         {
           const Index h = th.out[k];                       // v -> a in its face
@@ -108,10 +111,10 @@ public:
     for(std::size_t r = 0; r < rows; ++r)
       if(keep(r))
         kept.push_back(static_cast<Index>(r));
-    std::vector<double> q(size * kept.size());
+    Uninitialized_vector<double> q(size * kept.size());
     parallel_for_blocks(kept.size(), [&](std::size_t first, std::size_t last) {
       for(std::size_t j = first; j < last; ++j)
-        std::copy(m_q.begin() + size * kept[j], m_q.begin() + size * (kept[j] + 1), q.begin() + size * j);
+        copy_values(m_q.data() + size * kept[j], size, q.data() + size * j);
     });
     m_q.swap(q);
   }
@@ -185,7 +188,7 @@ private:
   }
 
   const double* m_xyz = nullptr;  // 3 per row
-  std::vector<double> m_q;        // 10 coefficients per row
+  Uninitialized_vector<double> m_q;   // 10 coefficients per row
 };
 
 } // namespace internal

@@ -31,8 +31,8 @@ namespace internal {
 // lists are those of the sequential sort for any number of tasks (no atomics; with one
 // histogram per task the memory would grow with the tasks times the vertices).
 inline void list_face_halfedges_by_source(std::size_t n, const std::vector<Index>& tri, bool with_apexes,
-                                          std::vector<Index>& offsets, std::vector<Index>& out,
-                                          std::vector<Index>& out_target, std::vector<Index>& out_apex)
+                                          std::vector<Index>& offsets, Index_array& out,
+                                          Index_array& out_target, Index_array& out_apex)
 {
   const Index h0 = static_cast<Index>(tri.size());
   // a range per thread (at most 8: each reads all corners), one more per 2^15 corners
@@ -82,12 +82,13 @@ inline void list_face_halfedges_by_source(std::size_t n, const std::vector<Index
 struct Triangle_halfedges
 {
   std::size_t n = 0, nf = 0;
-  std::vector<Index> source, target, twin;     // per halfedge
+  Index_array source, target, twin;            // per halfedge
   // outgoing halfedges of each vertex (face halfedges, then border ones): out[k] for
   // out_offsets[v] <= k < out_offsets[v + 1], with their targets and the third vertex of their
   // face (invalid_index for a border halfedge; only when built `with_apexes`), so that a
   // vertex's 1-ring and the faces around it are read from three contiguous ranges
-  std::vector<Index> out_offsets, out, out_target, out_apex;
+  std::vector<Index> out_offsets;
+  Index_array out, out_target, out_apex;
   // whether a directed edge is listed twice (or a face repeats a vertex): no halfedge mesh
   // has these faces; the pairing is then first come, first served
   bool repeated_directed_edge = false;
@@ -121,7 +122,7 @@ public:
     // the face halfedges without a twin, in increasing order: border halfedge h0 + i is the twin of the i-th
     auto without_twin = [&](std::size_t h) { return twin[h] == invalid_index; };
     const Ordered_compaction borders(twin.size(), without_twin);
-    std::vector<Index> border_twins(borders.size());
+    Index_array border_twins(borders.size());
     borders.visit([&](std::size_t h, std::size_t rank, bool border) {
       if(border)
         border_twins[rank] = static_cast<Index>(h);
@@ -295,7 +296,7 @@ private:
 
   // border halfedges, numbered after the face halfedges: each vertex's row gets them at its end
   // (border_twins: the face halfedges without a twin, in increasing order)
-  void add_border_halfedges(const std::vector<Index>& border_twins, bool with_apexes)
+  void add_border_halfedges(const Index_array& border_twins, bool with_apexes)
   {
     const Index h0 = static_cast<Index>(3 * nf);
     const std::size_t nh = h0 + border_twins.size();
@@ -311,19 +312,24 @@ private:
       extra[i + 1] += extra[i];
       out_offsets[i + 1] = face_off[i + 1] + extra[i + 1];
     }
-    // the rows widened one array at a time (a copy of a single array beside them at the peak)
-    auto widen = [&](std::vector<Index>& a, Index filler) {
-      std::vector<Index> wide(nh, filler);
+    // the rows widened one array at a time (a copy of a single array beside them at the peak);
+    // the border places of out and out_target are written below, those of out_apex stay invalid
+    auto widen = [&](Index_array& a, bool fill_border) {
+      Index_array wide;
+      if(fill_border)
+        wide.assign(nh, invalid_index);
+      else
+        wide.resize(nh);
       parallel_for_blocks(n, [&](std::size_t first, std::size_t last) {
         for(std::size_t i = first; i < last; ++i)
-          std::copy(a.begin() + face_off[i], a.begin() + face_off[i + 1], wide.begin() + out_offsets[i]);
+          copy_values(a.data() + face_off[i], face_off[i + 1] - face_off[i], wide.data() + out_offsets[i]);
       });
       a.swap(wide);
     };
-    widen(out, 0);
-    widen(out_target, 0);
+    widen(out, false);
+    widen(out_target, false);
     if(with_apexes)
-      widen(out_apex, invalid_index);
+      widen(out_apex, true);
     std::vector<Index> fill(n);
     for(std::size_t i = 0; i < n; ++i)
       fill[i] = out_offsets[i] + (face_off[i + 1] - face_off[i]);

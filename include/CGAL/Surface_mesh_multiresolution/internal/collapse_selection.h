@@ -102,6 +102,9 @@ inline bool does_collapse_flip_a_face(const Triangle_halfedges& th, Index o, Ind
 // An accepted half-edge collapse o -> e, in the rows of its level.
 struct Collapse { Index o, e; };
 
+// candidate keys (Candidate_key below); every key of such an array is written before it is read
+typedef Uninitialized_vector<std::uint64_t> Key_array;
+
 // A candidate collapse in 8 bytes: the leading `cost_bits` bits of the order-preserving
 // integer image of its cost (sign, exponent, mantissa), then its halfedge in the low
 // `halfedge_bits` bits, as few as the level's halfedge numbers need. With 40 cost bits (28 of
@@ -158,7 +161,7 @@ void sort_candidates(std::uint64_t* c, std::size_t n, const Candidate_key& key, 
   constexpr std::size_t block = std::size_t(1) << 16;
   const std::size_t blocks = (n + block - 1) / block;
   std::vector<std::size_t> count(blocks * buckets);
-  std::vector<std::uint64_t> scratch(n);
+  Key_array scratch(n);
   std::uint64_t* from = c;
   std::uint64_t* to = scratch.data();
   for(int d = 0; d < digits; ++d)
@@ -202,7 +205,7 @@ void sort_candidates(std::uint64_t* c, std::size_t n, const Candidate_key& key, 
   }
   if(from != c)
     std::copy(from, from + n, c);
-  scratch = std::vector<std::uint64_t>();
+  scratch = Key_array();
   // Runs of equal cost bits are ordered by their exact costs, then halfedges. They are not rare
   // everywhere: the symmetric stencils of a subdivided mesh make exact ties common (11 of the
   // 19 million keys sorted while decomposing a Loop-subdivided horse of 3.1M vertices lie in
@@ -261,7 +264,7 @@ void sort_candidates(std::uint64_t* c, std::size_t n, const Candidate_key& key, 
 // each time) while fewer than `minimum` are accepted. `candidates` holds the first `sorted` of
 // the `all` candidates in order; sort_rest() appends the others, in order, when they are needed.
 template <typename SortRest>
-void take_greedily(const Triangle_halfedges& th, const double* xyz, const std::vector<std::uint64_t>& candidates,
+void take_greedily(const Triangle_halfedges& th, const double* xyz, const Key_array& candidates,
                    std::size_t sorted, std::size_t all, const SortRest& sort_rest, const Candidate_key& key, std::size_t budget,
                    const std::vector<unsigned char>& on_border, std::vector<unsigned char>& locked,
                    std::vector<Collapse>& accepted, std::size_t considered, std::size_t minimum)
@@ -363,7 +366,7 @@ void take_greedily(const Triangle_halfedges& th, const double* xyz, const std::v
 // in every round. Same decisions as the loop for any number of threads (a test compares them),
 // the same tests made (only candidates whose ends are free at their turn are tested).
 template <typename SortRest>
-void take_greedily_in_rounds(const Triangle_halfedges& th, const double* xyz, const std::vector<std::uint64_t>& candidates,
+void take_greedily_in_rounds(const Triangle_halfedges& th, const double* xyz, const Key_array& candidates,
                              std::size_t sorted, std::size_t all, const SortRest& sort_rest, const Candidate_key& key, std::size_t budget,
                              const std::vector<unsigned char>& on_border, std::vector<Collapse>& accepted,
                              std::size_t considered, std::size_t minimum, std::size_t window)
@@ -504,7 +507,7 @@ constexpr std::uint64_t refused_candidate = ~std::uint64_t(0);
 // block order), parallel and deterministic. The front is a new array of about n keys, `c` is
 // left as it is (compacting the rest in place and moving the front before it were sequential
 // passes over the 6 n keys: a third of the select's time).
-inline std::vector<std::uint64_t> cheapest_keys(std::vector<std::uint64_t>& c, const Candidate_key& key, std::uint64_t refused,
+inline Key_array cheapest_keys(Key_array& c, const Candidate_key& key, std::uint64_t refused,
                                                 std::size_t wanted, std::size_t& total, std::uint64_t& limit)
 {
   const std::size_t n = c.size();
@@ -535,7 +538,7 @@ inline std::vector<std::uint64_t> cheapest_keys(std::vector<std::uint64_t>& c, c
   {
     limit = ~std::uint64_t(0);
     c.erase(std::remove(c.begin(), c.end(), refused), c.end());   // stable: the keys' order kept
-    std::vector<std::uint64_t> all;
+    Key_array all;
     all.swap(c);
     return all;
   }
@@ -573,7 +576,7 @@ inline std::vector<std::uint64_t> cheapest_keys(std::vector<std::uint64_t>& c, c
       in += hist2[b * buckets + v];
     offset[b + 1] = offset[b] + in;
   }
-  std::vector<std::uint64_t> front(offset[blocks]);
+  Key_array front(offset[blocks]);
   for_blocks([&](std::size_t b, std::size_t first, std::size_t last) {
     std::size_t w = offset[b];
     for(std::size_t i = first; i < last; ++i)
@@ -585,7 +588,7 @@ inline std::vector<std::uint64_t> cheapest_keys(std::vector<std::uint64_t>& c, c
 
 // Keeps in `c`, in their order, the keys past the front of cheapest_keys() (leading bits above
 // `limit`, refused keys left out).
-inline void keys_above(std::vector<std::uint64_t>& c, const Candidate_key& key, std::uint64_t refused, std::uint64_t limit)
+inline void keys_above(Key_array& c, const Candidate_key& key, std::uint64_t refused, std::uint64_t limit)
 {
   c.erase(std::remove_if(c.begin(), c.end(), [&](std::uint64_t x) { return x == refused || key.leading_bits(x) <= limit; }),
           c.end());
@@ -597,10 +600,10 @@ inline void keys_above(std::vector<std::uint64_t>& c, const Candidate_key& key, 
 // by vertex (the quadric and position of o are read once for its 1-ring, those of its
 // neighbours are near in memory), each into its own slot.
 template <typename CostOfRows>
-std::vector<std::uint64_t> candidate_keys(const Triangle_halfedges& th, const CostOfRows& cost,
+Key_array candidate_keys(const Triangle_halfedges& th, const CostOfRows& cost,
                                           const std::vector<unsigned char>& on_border, const Candidate_key& key)
 {
-  std::vector<std::uint64_t> candidates(th.source.size());
+  Key_array candidates(th.source.size());
   parallel_for_blocks(th.n, [&](std::size_t first, std::size_t last) {
     for(std::size_t o = first; o < last; ++o)
       for(Index k = th.out_offsets[o]; k < th.out_offsets[o + 1]; ++k)
@@ -619,7 +622,7 @@ std::vector<std::uint64_t> candidate_keys(const Triangle_halfedges& th, const Co
 // largest key returned (the rest comes from sort_candidate_rest()). on_border: one flag per
 // row, set here.
 template <typename CostOfRows>
-std::vector<std::uint64_t> sorted_candidates(const Triangle_halfedges& th, const CostOfRows& cost,
+Key_array sorted_candidates(const Triangle_halfedges& th, const CostOfRows& cost,
                                              std::vector<unsigned char>& on_border, Candidate_key& key,
                                              std::size_t wanted, std::size_t& total, std::uint64_t& limit)
 {
@@ -628,15 +631,15 @@ std::vector<std::uint64_t> sorted_candidates(const Triangle_halfedges& th, const
   for(Index h = static_cast<Index>(3 * th.nf); h < nh; ++h)   // the border halfedges come last
     on_border[th.source[h]] = on_border[th.target[h]] = 1;
   key = Candidate_key(nh);
-  std::vector<std::uint64_t> candidates = candidate_keys(th, cost, on_border, key);
+  Key_array candidates = candidate_keys(th, cost, on_border, key);
   // Only the cheapest `wanted` are sorted (the level considers them first; of about 6 n
   // candidates it takes n), with every candidate that shares their leading cost bits (the
   // exact costs order runs of equal cost bits): a true prefix of the full order; the rest is
   // computed again and sorted if ever needed (sort_candidate_rest(): a few small levels of a
   // decomposition). Dragon: 18 % of a decomposition in the sort before the partial sort; its
   // std::nth_element then took 10 % on two threads, sequential.
-  std::vector<std::uint64_t> front = cheapest_keys(candidates, key, refused_candidate, wanted, total, limit);
-  std::vector<std::uint64_t>().swap(candidates);
+  Key_array front = cheapest_keys(candidates, key, refused_candidate, wanted, total, limit);
+  Key_array().swap(candidates);
   sort_candidates(front.data(), front.size(), key, [&](Index h) { return candidate_cost(th, cost, on_border, h); });
   return front;
 }
@@ -645,9 +648,9 @@ std::vector<std::uint64_t> sorted_candidates(const Triangle_halfedges& th, const
 // leading cost bits are all above `limit`).
 template <typename CostOfRows>
 void sort_candidate_rest(const Triangle_halfedges& th, const CostOfRows& cost, const std::vector<unsigned char>& on_border,
-                         const Candidate_key& key, std::uint64_t limit, std::vector<std::uint64_t>& candidates)
+                         const Candidate_key& key, std::uint64_t limit, Key_array& candidates)
 {
-  std::vector<std::uint64_t> rest = candidate_keys(th, cost, on_border, key);
+  Key_array rest = candidate_keys(th, cost, on_border, key);
   keys_above(rest, key, refused_candidate, limit);
   sort_candidates(rest.data(), rest.size(), key, [&](Index h) { return candidate_cost(th, cost, on_border, h); });
   candidates.insert(candidates.end(), rest.begin(), rest.end());
@@ -673,7 +676,7 @@ void select_collapses(const Triangle_halfedges& th, const double* xyz, const Cos
   Candidate_key key(0);
   std::size_t all = 0;
   std::uint64_t limit = 0;
-  std::vector<std::uint64_t> candidates = sorted_candidates(th, cost, on_border, key, th.n, all, limit);
+  Key_array candidates = sorted_candidates(th, cost, on_border, key, th.n, all, limit);
   const std::size_t sorted = candidates.size();
   accepted.clear();
   // Only the th.n cheapest candidates (of about 6 th.n) are considered, unless fewer than

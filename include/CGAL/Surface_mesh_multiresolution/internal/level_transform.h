@@ -77,7 +77,8 @@ inline void analyse_level(const Pyramid_level& lev, const Sparse_weights& w, std
                           std::vector<double>& details, Corrections& corrections)
 {
   const std::size_t n = lev.number_of_rows() * dim;
-  std::vector<double> state(f), prediction(n);
+  std::vector<double> state(f);
+  Uninitialized_vector<double> prediction(n);   // every row is odd or even: all written
   odd_values_from_targets(lev, dim, state.data());
   w.apply_row_list(state.data(), prediction.data(), dim, lev.odd_rows.data(), lev.odd_rows.size());
   w.apply_row_list(f.data(), prediction.data(), dim, lev.even_rows.data(), lev.even_rows.size());

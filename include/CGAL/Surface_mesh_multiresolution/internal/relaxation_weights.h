@@ -109,8 +109,8 @@ public:
   void pair_corners_from_halfedges()
   {
     halfedges();
-    for(std::vector<Index>* v : {&m_mesh.source, &m_mesh.target, &m_mesh.out_target, &m_mesh.out_apex})
-      std::vector<Index>().swap(*v);      // not read from here on: freed before the pairs are made
+    for(Index_array* v : {&m_mesh.source, &m_mesh.target, &m_mesh.out_target, &m_mesh.out_apex})
+      Index_array().swap(*v);             // not read from here on: freed before the pairs are made
     corners();
     const Triangle_halfedges& th = m_mesh;
     parallel_for_blocks(m_n, [&](std::size_t first, std::size_t last) {
@@ -131,8 +131,8 @@ public:
   // after the selection
   void keep_outgoing_lists_only()
   {
-    for(std::vector<Index>* v : {&m_mesh.source, &m_mesh.target, &m_mesh.twin, &m_mesh.out_target, &m_mesh.out_apex})
-      std::vector<Index>().swap(*v);      // (a chain of assignments would keep the capacities)
+    for(Index_array* v : {&m_mesh.source, &m_mesh.target, &m_mesh.twin, &m_mesh.out_target, &m_mesh.out_apex})
+      Index_array().swap(*v);             // (a chain of assignments would keep the capacities)
   }
 
   // frees what the weights were computed with (not the halfedges)
@@ -141,9 +141,10 @@ public:
     m_has_corners = false;
     m_paired = false;
     m_cotangent = std::vector<double>();
-    for(std::vector<Index>* v : {&m_ring_offsets, &m_out, &m_out_target, &m_out_apex, &m_corner_twin})
-      std::vector<Index>().swap(*v);
-    m_apex_matched = std::vector<unsigned char>();
+    std::vector<Index>().swap(m_ring_offsets);
+    for(Index_array* v : {&m_out, &m_out_target, &m_out_apex, &m_corner_twin})
+      Index_array().swap(*v);
+    Uninitialized_vector<unsigned char>().swap(m_apex_matched);
   }
 
   // xyz: 3 doubles per row; fixed: nullptr or one flag per row (constrained vertices)
@@ -758,8 +759,10 @@ private:
   bool m_has_halfedges = false, m_has_corners = false, m_paired = false, m_listed = false;
   Triangle_halfedges m_mesh;
   // the corners around every vertex (corners()) and their pairing (match_ring())
-  std::vector<Index> m_ring_offsets, m_out, m_out_target, m_out_apex, m_corner_twin;
-  std::vector<unsigned char> m_apex_matched;
+  std::vector<Index> m_ring_offsets;
+  // written for every corner before they are read (match_ring(), pair_corners_from_halfedges())
+  Index_array m_out, m_out_target, m_out_apex, m_corner_twin;
+  Uninitialized_vector<unsigned char> m_apex_matched;
   // the corner lists read: the halfedges' where they are built, else the ones above
   const Index* m_offs = nullptr;
   const Index* m_outp = nullptr;
