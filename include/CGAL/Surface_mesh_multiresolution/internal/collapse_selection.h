@@ -508,7 +508,7 @@ constexpr std::uint64_t refused_candidate = ~std::uint64_t(0);
 // left as it is (compacting the rest in place and moving the front before it were sequential
 // passes over the 6 n keys: a third of the select's time).
 inline Key_array cheapest_keys(Key_array& c, const Candidate_key& key, std::uint64_t refused,
-                                                std::size_t wanted, std::size_t& total, std::uint64_t& limit)
+                               std::size_t wanted, std::size_t& total, std::uint64_t& limit)
 {
   const std::size_t n = c.size();
   constexpr int digit_bits = 12;
@@ -601,7 +601,7 @@ inline void keys_above(Key_array& c, const Candidate_key& key, std::uint64_t ref
 // neighbours are near in memory), each into its own slot.
 template <typename CostOfRows>
 Key_array candidate_keys(const Triangle_halfedges& th, const CostOfRows& cost,
-                                          const std::vector<unsigned char>& on_border, const Candidate_key& key)
+                         const std::vector<unsigned char>& on_border, const Candidate_key& key)
 {
   Key_array candidates(th.source.size());
   parallel_for_blocks(th.n, [&](std::size_t first, std::size_t last) {
@@ -623,8 +623,8 @@ Key_array candidate_keys(const Triangle_halfedges& th, const CostOfRows& cost,
 // row, set here.
 template <typename CostOfRows>
 Key_array sorted_candidates(const Triangle_halfedges& th, const CostOfRows& cost,
-                                             std::vector<unsigned char>& on_border, Candidate_key& key,
-                                             std::size_t wanted, std::size_t& total, std::uint64_t& limit)
+                            std::vector<unsigned char>& on_border, Candidate_key& key,
+                            std::size_t wanted, std::size_t& total, std::uint64_t& limit)
 {
   const Index nh = static_cast<Index>(th.source.size());
   on_border.assign(th.n, 0);
