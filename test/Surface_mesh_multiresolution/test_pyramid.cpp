@@ -459,11 +459,13 @@ void check_same_pyramid_renumbered(const SMR::Pyramid<Mesh>& a, const SMR::Pyram
       for(std::size_t i = 0; i < to_b.size(); ++i)
         differing += std::memcmp(&la.details[c][d * i], &lb.details[c][d * to_b[i]], 8 * d) != 0;
       CHECK(differing == 0);
-      std::vector<std::pair<std::size_t, double> > corrections_a, corrections_b;
+      // (position, bits of the correction): a zero correction's sign is meaningful (-0.0)
+      auto bits = [](double x) { std::uint64_t u; std::memcpy(&u, &x, sizeof u); return u; };
+      std::vector<std::pair<std::size_t, std::uint64_t> > corrections_a, corrections_b;
       for(const auto& x : la.corrections[c])
-        corrections_a.emplace_back(d * to_b[x.first / d] + x.first % d, x.second);
+        corrections_a.emplace_back(d * to_b[x.first / d] + x.first % d, bits(x.second));
       for(const auto& x : lb.corrections[c])
-        corrections_b.emplace_back(x.first, x.second);
+        corrections_b.emplace_back(x.first, bits(x.second));
       std::sort(corrections_a.begin(), corrections_a.end());
       CHECK(std::is_sorted(lb.corrections[c].begin(), lb.corrections[c].end()));
       CHECK(corrections_a == corrections_b);
