@@ -16,6 +16,9 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <limits>
 #include <numeric>
 #include <set>
 #include <vector>
@@ -484,6 +487,152 @@ TEST_CASE("a relax() step applies its weights as it computes them: the stored op
       CHECK(gc[v] == gd[v]);
     }
   }
+}
+
+namespace {
+
+// the points' coordinates as bits (== takes -0.0 for 0.0)
+std::vector<std::uint64_t> coordinate_bits(const Mesh& m)
+{
+  std::vector<std::uint64_t> bits;
+  for(const Point_3& p : smr_test::positions_in_order(m))
+    for(int c = 0; c < 3; ++c)
+    {
+      const double x = p[c];
+      std::uint64_t b;
+      std::memcpy(&b, &x, sizeof b);
+      bits.push_back(b);
+    }
+  return bits;
+}
+
+// A closed surface of 4 triangles with two distinct edges between its vertices N and S (a
+// sphere cut into two lunes along them, a vertex inside each lune), built halfedge by
+// halfedge (Surface_mesh::add_face() joins such edges into one), then an icosphere beside it.
+Mesh with_double_edge()
+{
+  Mesh m;
+  typedef Mesh::Halfedge_index H;
+  const auto N = m.add_vertex(Point_3(0, 0, 1)), S = m.add_vertex(Point_3(0.1, 0, -1));
+  const auto a = m.add_vertex(Point_3(1, 0.2, 0)), b = m.add_vertex(Point_3(-1, -0.1, 0.1));
+  auto edge = [&](Mesh::Vertex_index from, Mesh::Vertex_index to) {
+    const H h = m.add_edge();
+    m.set_target(h, to);
+    m.set_target(m.opposite(h), from);
+    return h;
+  };
+  const H e1 = edge(N, S), e2 = edge(N, S), Na = edge(N, a), aS = edge(a, S), Nb = edge(N, b), bS = edge(b, S);
+  auto face = [&](H x, H y, H z) {
+    const auto f = m.add_face();
+    for(H h : {x, y, z}) m.set_face(h, f);
+    m.set_next(x, y);
+    m.set_next(y, z);
+    m.set_next(z, x);
+    m.set_halfedge(f, x);
+  };
+  face(Na, aS, m.opposite(e1));                 // N a S
+  face(m.opposite(aS), m.opposite(Na), e2);     // S a N
+  face(e1, m.opposite(bS), m.opposite(Nb));     // N S b
+  face(m.opposite(e2), Nb, bS);                 // S N b
+  m.set_halfedge(N, m.opposite(Na));
+  m.set_halfedge(S, e1);
+  m.set_halfedge(a, Na);
+  m.set_halfedge(b, Nb);
+  CGAL::copy_face_graph(smr_test::icosphere<Mesh>(1), m);
+  return m;
+}
+
+} // namespace
+
+TEST_CASE("relax() on a Surface_mesh reads its own halfedges: the index path's rows, bit for bit", "[relaxation][halfedges]")
+{
+  // One step of relax() on a Surface_mesh computes its rows from the mesh's halfedges; the
+  // operator (and a mesh with removed elements) computes them on the index view. Both must be
+  // the same, bit for bit: borders, a ring longer than 32 corners, an isolated vertex, open
+  // fans pinched at a vertex, constrained rows, meshes of CGAL's data set. Where two edges
+  // join the same vertices the halfedge rows give up and relax() takes the index path.
+  typedef SMR::internal::Surface_mesh_relaxation_rows<Point_3> Rows;
+  std::vector<std::pair<Mesh, bool> > meshes;   // (mesh, whether its halfedges give the rows)
+  meshes.emplace_back(smr_test::icosphere<Mesh>(3), true);
+  meshes.emplace_back(awkward_rings(), true);
+  {
+    // two open fans of 5 triangles around vertex 0, joined there only (a pinched vertex)
+    Mesh pinched;
+    const auto c = pinched.add_vertex(Point_3(0, 0, 0));
+    std::vector<Mesh::Vertex_index> rim;
+    for(int k = 0; k < 12; ++k)
+      rim.push_back(pinched.add_vertex(Point_3(std::cos(0.5 * k), std::sin(0.5 * k), 0.2 * (k % 3) - 0.1 * (k % 2))));
+    for(int k = 0; k < 5; ++k) REQUIRE(pinched.add_face(c, rim[k], rim[k + 1]) != Mesh::null_face());
+    for(int k = 6; k < 11; ++k) REQUIRE(pinched.add_face(c, rim[k], rim[k + 1]) != Mesh::null_face());
+    meshes.emplace_back(pinched, true);
+  }
+  Mesh data;
+  if(smr_test::read_cgal_mesh("meshes/elephant-with-holes.off", data)) meshes.emplace_back(data, true);
+  if(smr_test::read_cgal_mesh("meshes/mannequin-devil.off", data)) meshes.emplace_back(data, true);
+  meshes.emplace_back(with_double_edge(), false);
+  REQUIRE(meshes.back().first.is_valid(false));
+  for(const auto& entry : meshes)
+  {
+    const Mesh& m = entry.first;
+    for(auto s : {SMR::Relaxation_scheme::CURVATURE, SMR::Relaxation_scheme::UNIFORM})
+      for(bool with_constraints : {false, true})
+      {
+        INFO(name(s) << " on a mesh of " << num_vertices(m) << " vertices, constraints " << with_constraints);
+        // the halfedge rows can (or cannot) be read
+        {
+          const std::vector<double> xyz = coordinates(m);
+          Rows rows(m);
+          if(s == SMR::Relaxation_scheme::CURVATURE) rows.compute_cotangents(xyz.data());
+          std::size_t calls = 0;
+          CHECK(rows.apply_rows(s, xyz.data(), nullptr, [&](std::size_t, const SMR::internal::Index*, const double*, std::size_t) {
+            ++calls;
+          }) == entry.second);
+          if(entry.second) CHECK(calls == num_vertices(m));
+        }
+        Mesh a = m, b = m, c = m;
+        auto fa = a.add_property_map<Mesh::Vertex_index, bool>("v:fixed", false).first;
+        auto fb = b.add_property_map<Mesh::Vertex_index, bool>("v:fixed", false).first;
+        auto fc = c.add_property_map<Mesh::Vertex_index, bool>("v:fixed", false).first;
+        if(with_constraints)
+          for(auto v : vertices(m)) fa[v] = fb[v] = fc[v] = (v.idx() % 5 == 2);
+        // c: a removed vertex at the end (has_garbage(): the index path), the same rows
+        c.remove_vertex(c.add_vertex(Point_3(9, 9, 9)));
+        REQUIRE(c.has_garbage());
+        SMR::relax(a, SMR::parameters::relaxation_scheme(s).vertex_is_constrained_map(fa));
+        SMR::relaxation_operator(b, SMR::parameters::relaxation_scheme(s).vertex_is_constrained_map(fb))
+            .apply(b, SMR::parameters::vertex_is_constrained_map(fb));
+        SMR::relax(c, SMR::parameters::relaxation_scheme(s).vertex_is_constrained_map(fc));
+        CHECK(coordinate_bits(a) == coordinate_bits(b));
+        CHECK(coordinate_bits(a) == coordinate_bits(c));
+        CHECK(coordinate_bits(a) != coordinate_bits(m));
+      }
+  }
+}
+
+TEST_CASE("relax() on a Surface_mesh refuses what the index view refuses, with its words", "[relaxation][halfedges]")
+{
+  // a quadrangle among triangles: the first such face is named, for both 1-ring schemes
+  Mesh m = smr_test::icosphere<Mesh>(1);
+  std::vector<Mesh::Vertex_index> q;
+  for(int k = 0; k < 4; ++k) q.push_back(m.add_vertex(Point_3(5 + (k == 1 || k == 2), (k >= 2), 0)));
+  m.add_face(q);
+  m.add_face(q[0], q[2], m.add_vertex(Point_3(5, -1, 0)));
+  const std::size_t quad = m.number_of_faces() - 2;
+  for(auto s : {SMR::Relaxation_scheme::CURVATURE, SMR::Relaxation_scheme::UNIFORM})
+  {
+    Mesh r = m;
+    REQUIRE_THROWS_WITH(SMR::relax(r, SMR::parameters::relaxation_scheme(s)),
+                        Catch::Contains("face " + std::to_string(quad) + " ") && Catch::Contains("not a triangle: it has 4 vertices"));
+    CHECK(smr_test::positions_in_order(r) == smr_test::positions_in_order(m));   // nothing written
+  }
+  // non-finite coordinates in two of the blocks the points are read in: the first is named
+  Mesh n = smr_test::icosphere<Mesh>(6);
+  REQUIRE(num_vertices(n) > 40000);
+  n.point(Mesh::Vertex_index(35000)) = Point_3(std::numeric_limits<double>::infinity(), 0, 0);
+  n.point(Mesh::Vertex_index(20000)) = Point_3(0, std::numeric_limits<double>::quiet_NaN(), 0);
+  const Mesh n0 = n;
+  REQUIRE_THROWS_WITH(SMR::relax(n), Catch::Contains("vertex 20000 ") && Catch::Contains("non-finite coordinate"));
+  CHECK(coordinate_bits(n) == coordinate_bits(n0));
 }
 
 TEST_CASE("constrained vertices do not move", "[relaxation][constraints]")

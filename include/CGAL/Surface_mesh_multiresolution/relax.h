@@ -12,6 +12,7 @@
 #include <CGAL/Surface_mesh_multiresolution/internal/channels.h>
 #include <CGAL/Surface_mesh_multiresolution/internal/indexed_mesh.h>
 #include <CGAL/Surface_mesh_multiresolution/internal/relaxation_weights.h>
+#include <CGAL/Surface_mesh_multiresolution/internal/Surface_mesh_relaxation_rows.h>
 #include <CGAL/Surface_mesh_multiresolution/parameters.h>
 #include <CGAL/Surface_mesh_multiresolution/Relaxation_operator.h>
 #include <CGAL/Surface_mesh_multiresolution/Relaxation_scheme.h>
@@ -28,22 +29,45 @@ namespace CGAL {
 namespace Surface_mesh_multiresolution {
 namespace internal {
 
+// Rows read from the mesh's own halfedges where its type allows it (Surface_mesh); none here
+template <typename TriangleMesh>
+struct Mesh_relaxation_rows
+{
+  explicit Mesh_relaxation_rows(const TriangleMesh&) {}
+  static bool usable(const TriangleMesh&) { return false; }
+  void check_faces() const {}
+  void compute_cotangents(const double*) {}
+  void release() {}
+  template <typename ApplyRow>
+  bool apply_rows(Relaxation_scheme, const double*, const unsigned char*, const ApplyRow&) const { return false; }
+};
+
+template <typename Point>
+struct Mesh_relaxation_rows<CGAL::Surface_mesh<Point> > : Surface_mesh_relaxation_rows<Point>
+{
+  explicit Mesh_relaxation_rows(const CGAL::Surface_mesh<Point>& m) : Surface_mesh_relaxation_rows<Point>(m) {}
+};
+
 // Everything relax() and relaxation_operator() share: the validated index view of the mesh,
-// its coordinates, the constrained flags and the weight builder.
+// its coordinates, the constrained flags and the weight builder. With `one_shot` (weights used
+// once, computed as they are applied) on a mesh whose halfedges give the rows
+// (Mesh_relaxation_rows), the index view is built only if those rows cannot be used.
 template <typename TriangleMesh, typename NamedParameters>
 struct Relaxation_setup
 {
   typedef typename GetGeomTraits<TriangleMesh, NamedParameters>::type Geom_traits;
   typedef typename boost::graph_traits<TriangleMesh>::vertex_descriptor vertex_descriptor;
+  typedef typename GetInitializedVertexIndexMap<TriangleMesh, NamedParameters>::const_type Vertex_index_map;
 
-  Indexed_mesh<TriangleMesh> mesh;
+  Indexed_mesh<TriangleMesh> mesh;    // (only its vertices while the rows come from the halfedges)
   std::vector<double> xyz;
   std::vector<unsigned char> fixed;   // empty: no constrained vertex
   Relaxation_weight_builder builder;
   Relaxation_scheme scheme;
   Geom_traits gt;
 
-  Relaxation_setup(const TriangleMesh& tm, const NamedParameters& np)
+  Relaxation_setup(const TriangleMesh& tm, const NamedParameters& np, bool one_shot = false)
+    : m_tm(tm), m_vim(CGAL::get_initialized_vertex_index_map(tm, np)), m_rows(tm)
   {
     using parameters::choose_parameter;
     using parameters::get_parameter;
@@ -58,15 +82,24 @@ struct Relaxation_setup
                                                        Static_boolean_property_map<vertex_descriptor, false>());
     scheme = choose_parameter(get_parameter(np, internal_np::relaxation_scheme), Relaxation_scheme::CURVATURE);
 
-    build_indexed_mesh(tm, CGAL::get_initialized_vertex_index_map(tm, np), mesh);
-    read_coordinates(mesh.vertices, vpm, gt, xyz);
+    m_on_halfedges = one_shot && scheme != Relaxation_scheme::SECOND_ORDER_DIFFERENCE && m_rows.usable(tm);
+    if(m_on_halfedges)
+    {
+      if(scheme == Relaxation_scheme::UNIFORM)
+        m_rows.check_faces();               // (the curvature's cotangent pass checks them)
+      mesh.vertices.assign(vertices(tm).begin(), vertices(tm).end());
+    }
+    else
+      build_index_view();
+    // the mesh's own points are read in parallel (other maps: one thread, as the user may not expect otherwise)
+    read_coordinates(mesh.vertices, vpm, gt, xyz,
+                     std::is_same<Vertex_point_map, typename boost::property_map<TriangleMesh, CGAL::vertex_point_t>::const_type>::value);
     if(!std::is_same<Vertex_constraint_map, Static_boolean_property_map<vertex_descriptor, false> >::value)
     {
       fixed.resize(mesh.number_of_vertices());
       for(std::size_t i = 0; i < fixed.size(); ++i)
         fixed[i] = get(vcm, mesh.vertices[i]) ? 1 : 0;
     }
-    builder.set_connectivity(mesh.number_of_vertices(), mesh.triangles);
   }
 
   // the flags of the constrained rows, or nullptr
@@ -75,9 +108,41 @@ struct Relaxation_setup
   // the weights on the coordinates brought to a safe range (geometry_for_computations(): exact, weights unchanged)
   void build(Sparse_weights& w, std::vector<Relaxation_row_rule>& rules)
   {
-    std::vector<double> scaled;
-    builder.build(scheme, geometry_for_computations(xyz, scaled).data(), constrained(), w, rules);
+    builder.build(scheme, geometry_for_computations(xyz, m_scaled).data(), constrained(), w, rules);
   }
+
+  // The rows of the weights of the current coordinates handed to apply_row(i, columns,
+  // values, length) as they are computed (Relaxation_weight_builder::build_and_apply()), from
+  // the halfedges where they can be read there; the same rows either way. Not for SOD.
+  template <typename ApplyRow>
+  void build_and_apply(const ApplyRow& apply_row)
+  {
+    const double* g = geometry_for_computations(xyz, m_scaled).data();
+    if(m_on_halfedges)
+    {
+      if(scheme != Relaxation_scheme::UNIFORM)
+        m_rows.compute_cotangents(g);
+      if(m_rows.apply_rows(scheme, g, constrained(), apply_row))
+        return;
+      m_on_halfedges = false;               // rows the two paths could pair differently: every row again
+      m_rows.release();
+      build_index_view();
+    }
+    builder.build_and_apply(scheme, g, constrained(), apply_row);
+  }
+
+private:
+  void build_index_view()
+  {
+    build_indexed_mesh(m_tm, m_vim, mesh);
+    builder.set_connectivity(mesh.number_of_vertices(), mesh.triangles);
+  }
+
+  const TriangleMesh& m_tm;
+  Vertex_index_map m_vim;
+  Mesh_relaxation_rows<TriangleMesh> m_rows;
+  bool m_on_halfedges = false;
+  std::vector<double> m_scaled;
 };
 
 } // namespace internal
@@ -203,14 +268,16 @@ void relax(TriangleMesh& tm, const NamedParameters& np = parameters::default_val
   using parameters::get_parameter;
   typedef typename GetVertexPointMap<TriangleMesh, NamedParameters>::type Vertex_point_map;
 
-  internal::Relaxation_setup<TriangleMesh, NamedParameters> setup(tm, np);
-  Vertex_point_map vpm = choose_parameter(get_parameter(np, CGAL::internal_np::vertex_point),
-                                          get_property_map(CGAL::vertex_point, tm));
   const internal::Relaxed_channels<NamedParameters> channels(np);
   const bool geometry = channels.geometry;
   const unsigned int iterations = channels.iterations;
   const auto& maps = channels.maps;
   constexpr std::size_t attribute_dimension = internal::Relaxed_channels<NamedParameters>::attribute_dimension;
+  // every step's weights used once (new weights for the moved geometry, or one step): computed
+  // as they are applied, from the mesh's own halfedges where it has them
+  internal::Relaxation_setup<TriangleMesh, NamedParameters> setup(tm, np, geometry || iterations == 1);
+  Vertex_point_map vpm = choose_parameter(get_parameter(np, CGAL::internal_np::vertex_point),
+                                          get_property_map(CGAL::vertex_point, tm));
 
   std::vector<double> attributes, tmp;
   if(attribute_dimension > 0)
@@ -222,7 +289,7 @@ void relax(TriangleMesh& tm, const NamedParameters& np = parameters::default_val
   {
     // every step's weights are used once (new weights for the moved geometry, or one step):
     // applied as they are computed, not stored
-    std::vector<double> next_xyz(geometry ? setup.xyz.size() : 0), scaled;
+    std::vector<double> next_xyz(geometry ? setup.xyz.size() : 0);
     tmp.resize(attributes.size());
     for(unsigned int it = 0; it < iterations; ++it)
     {
@@ -230,8 +297,7 @@ void relax(TriangleMesh& tm, const NamedParameters& np = parameters::default_val
       const double* a = attributes.data();
       double* y = next_xyz.data();
       double* b = tmp.data();
-      setup.builder.build_and_apply(setup.scheme, internal::geometry_for_computations(setup.xyz, scaled).data(), setup.constrained(),
-                                    [&](std::size_t i, const internal::Index* col, const double* val, std::size_t length) {
+      setup.build_and_apply([&](std::size_t i, const internal::Index* col, const double* val, std::size_t length) {
         if(geometry)
           internal::Sparse_weights::combine(col, val, length, x, y + 3 * i, 3);
         if(attribute_dimension > 0)
@@ -265,7 +331,8 @@ void relax(TriangleMesh& tm, const NamedParameters& np = parameters::default_val
     }
   }
   if(geometry)
-    internal::write_coordinates(setup.mesh.vertices, vpm, setup.gt, setup.xyz);
+    internal::write_coordinates(setup.mesh.vertices, vpm, setup.gt, setup.xyz,
+                                std::is_same<Vertex_point_map, typename boost::property_map<TriangleMesh, CGAL::vertex_point_t>::type>::value);
   if(attribute_dimension > 0)
     internal::write_channels(maps, setup.mesh.vertices, attributes);
 }

@@ -12,11 +12,11 @@
 #include <CGAL/Surface_mesh_multiresolution/internal/collapse_selection.h>
 #include <CGAL/Surface_mesh_multiresolution/internal/helpers.h>
 #include <CGAL/Surface_mesh_multiresolution/internal/level_transform.h>
+#include <CGAL/Surface_mesh_multiresolution/internal/parallel.h>
 #include <CGAL/Surface_mesh_multiresolution/internal/Triangle_halfedges.h>
 #include <CGAL/Surface_mesh_multiresolution/Pyramid.h>
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -185,17 +185,8 @@ inline std::string check_level_halfedges(const Pyramid_level& lev, const Triangl
     return satisfies_link_condition(th, h, o, e, on_border) ? 0 : 4;
   };
   const std::size_t m = lev.odd_rows.size();
-  std::atomic<std::size_t> first(m);
-  parallel_for_blocks(m, [&](std::size_t b, std::size_t e) {
-    for(std::size_t q = b; q < e && q < first.load(std::memory_order_relaxed); ++q)
-      if(refusal(q) != 0)
-      {
-        std::size_t seen = first.load();
-        while(q < seen && !first.compare_exchange_weak(seen, q)) {}
-        return;
-      }
-  });
-  return first.load() < m ? why[refusal(first.load())] : std::string();
+  const std::size_t first = first_position_where(m, [&](std::size_t q) { return refusal(q) != 0; });
+  return first < m ? why[refusal(first)] : std::string();
 }
 
 // (6) but the halfedges, for one level: F holds F_{k+1} (rows of M_{k+1}) and receives F_k

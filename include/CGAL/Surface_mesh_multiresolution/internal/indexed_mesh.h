@@ -10,6 +10,7 @@
 
 #include <CGAL/Surface_mesh_multiresolution/internal/config.h>
 #include <CGAL/Surface_mesh_multiresolution/internal/helpers.h>
+#include <CGAL/Surface_mesh_multiresolution/internal/parallel.h>
 
 #include <CGAL/boost/graph/iterator.h>
 #include <CGAL/boost/graph/properties.h>
@@ -17,6 +18,7 @@
 
 #include <boost/graph/graph_traits.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -46,6 +48,26 @@ struct Indexed_mesh
   template <typename VertexIndexMap>
   Index row(vertex_descriptor v, VertexIndexMap vim) const { return row_of[static_cast<std::size_t>(get(vim, v))]; }
 };
+
+// The message of the exception for face f, number face_number in faces(tm), found not to be
+// a triangle of three distinct vertices (its rows in build_indexed_mesh()).
+template <typename TriangleMesh>
+std::string triangle_defect(const TriangleMesh& tm, typename boost::graph_traits<TriangleMesh>::face_descriptor f,
+                            std::size_t face_number)
+{
+  typedef typename boost::graph_traits<TriangleMesh>::halfedge_descriptor halfedge_descriptor;
+  const halfedge_descriptor h0 = halfedge(f, tm);
+  const halfedge_descriptor h1 = next(h0, tm), h2 = next(h1, tm);
+  const std::string face = "face " + std::to_string(face_number) + " (in the order of faces(tm))";
+  if(next(h2, tm) != h0)
+  {
+    std::size_t degree = 3;
+    for(halfedge_descriptor h = next(h2, tm); h != h0 && degree < 1000000; h = next(h, tm))
+      ++degree;
+    return face + " is not a triangle: it has " + std::to_string(degree) + " vertices";
+  }
+  return face + " repeats a vertex";
+}
 
 // Numbers the vertices and collects the triangles.
 // \throws std::invalid_argument when a face is not a triangle or repeats a vertex.
@@ -81,18 +103,12 @@ void build_indexed_mesh(const TriangleMesh& tm, VertexIndexMap vim, Indexed_mesh
     const halfedge_descriptor h0 = halfedge(f, tm);
     const halfedge_descriptor h1 = next(h0, tm), h2 = next(h1, tm);
     if(next(h2, tm) != h0)
-    {
-      std::size_t degree = 3;
-      for(halfedge_descriptor h = next(h2, tm); h != h0 && degree < 1000000; h = next(h, tm))
-        ++degree;
-      throw std::invalid_argument("face " + std::to_string(face_number) + " (in the order of faces(tm)) is not a triangle: it has "
-                                  + std::to_string(degree) + " vertices");
-    }
+      throw std::invalid_argument(triangle_defect(tm, f, face_number));
     // the sources of h0, h1, h2 as the targets of h2, h0, h1 (a halfedge structure stores
     // targets: a source is the target of the opposite halfedge, one more scattered read)
     const Index a = im.row(target(h2, tm), vim), b = im.row(target(h0, tm), vim), c = im.row(target(h1, tm), vim);
     if(a == b || b == c || c == a)
-      throw std::invalid_argument("face " + std::to_string(face_number) + " (in the order of faces(tm)) repeats a vertex");
+      throw std::invalid_argument(triangle_defect(tm, f, face_number));
     im.triangles.push_back(a);
     im.triangles.push_back(b);
     im.triangles.push_back(c);
@@ -100,35 +116,41 @@ void build_indexed_mesh(const TriangleMesh& tm, VertexIndexMap vim, Indexed_mesh
   }
 }
 
-// Writes the coordinates of the vertices, in the order of \`verts\`, as doubles.
+// Writes the coordinates of the vertices, in the order of \`verts\`, as doubles; in parallel
+// blocks when \`in_parallel\` (only for maps known to be safe to read from several threads).
 // \throws std::invalid_argument naming the first vertex with a non-finite coordinate.
 template <typename VertexDescriptor, typename VertexPointMap, typename GeomTraits>
 void read_coordinates(const std::vector<VertexDescriptor>& verts, VertexPointMap vpm, const GeomTraits& gt,
-                      std::vector<double>& xyz)
+                      std::vector<double>& xyz, bool in_parallel = false)
 {
   const auto x = gt.compute_x_3_object();
   const auto y = gt.compute_y_3_object();
   const auto z = gt.compute_z_3_object();
-  xyz.resize(3 * verts.size());
-  for(std::size_t i = 0; i < verts.size(); ++i)
-  {
+  const std::size_t n = verts.size();
+  xyz.resize(3 * n);
+  const std::size_t bad = first_position_where(n, [&](std::size_t i) {
     const auto& p = get(vpm, verts[i]);
     double* out = xyz.data() + 3 * i;
     out[0] = CGAL::to_double(x(p));
     out[1] = CGAL::to_double(y(p));
     out[2] = CGAL::to_double(z(p));
-    if(!(std::isfinite(out[0]) && std::isfinite(out[1]) && std::isfinite(out[2])))
-      throw std::invalid_argument("vertex " + std::to_string(i) + " (in the order of vertices(tm)) has a non-finite coordinate");
-  }
+    return !(std::isfinite(out[0]) && std::isfinite(out[1]) && std::isfinite(out[2]));
+  }, in_parallel ? 8192 : (std::max)(n, std::size_t(1)));
+  if(bad < n)
+    throw std::invalid_argument("vertex " + std::to_string(bad) + " (in the order of vertices(tm)) has a non-finite coordinate");
 }
 
+// writes the points of xyz (3 doubles per vertex of \`verts\`); in parallel blocks when
+// \`in_parallel\` (only for maps known to be safe to write from several threads, each vertex once)
 template <typename VertexDescriptor, typename VertexPointMap, typename GeomTraits>
 void write_coordinates(const std::vector<VertexDescriptor>& verts, VertexPointMap vpm, const GeomTraits& gt,
-                       const std::vector<double>& xyz)
+                       const std::vector<double>& xyz, bool in_parallel = false)
 {
   const auto point = gt.construct_point_3_object();
-  for(std::size_t i = 0; i < verts.size(); ++i)
-    put(vpm, verts[i], point(xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]));
+  parallel_for_blocks(verts.size(), [&](std::size_t first, std::size_t last) {
+    for(std::size_t i = first; i < last; ++i)
+      put(vpm, verts[i], point(xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]));
+  }, in_parallel ? 8192 : (std::max)(verts.size(), std::size_t(1)));
 }
 
 } // namespace internal

@@ -10,6 +10,7 @@
 
 #include <CGAL/Surface_mesh_multiresolution/internal/config.h>
 
+#include <atomic>
 #include <cstddef>
 
 #include <algorithm>
@@ -62,6 +63,25 @@ void parallel_for_blocks(std::size_t n, const F& f, std::size_t grain = 8192)
 #endif
   if(n > 0)
     f(std::size_t(0), n);
+}
+
+// The first position p < n where fails(p) holds, or n: blocks in parallel, each stopping at
+// its first failure or where an earlier one was already found (a shared atomic minimum), so
+// the answer is the sequential scan's for any number of threads.
+template <typename Fails>
+std::size_t first_position_where(std::size_t n, const Fails& fails, std::size_t grain = 8192)
+{
+  std::atomic<std::size_t> first(n);
+  parallel_for_blocks(n, [&](std::size_t b, std::size_t e) {
+    for(std::size_t p = b; p < e && p < first.load(std::memory_order_relaxed); ++p)
+      if(fails(p))
+      {
+        std::size_t seen = first.load();
+        while(p < seen && !first.compare_exchange_weak(seen, p)) {}
+        return;
+      }
+  }, grain);
+  return first.load();
 }
 
 // An ordered compaction in parallel: keep(p) is evaluated per position p < n in fixed blocks,

@@ -66,11 +66,17 @@ inline bool second_order_difference_coefficients(const double* p1, const double*
   return true;
 }
 
+template <typename Point> class Surface_mesh_relaxation_rows;
+
 // Computes the weights of one relaxation operator on an indexed triangle mesh.
 // The topology (and, for SOD, the hinge structure) is kept, so that weights for new
 // positions on the same connectivity cost only the numeric passes.
 class Relaxation_weight_builder
 {
+  // computes the same rows on a Surface_mesh's halfedges, with the cotangents, normalisation
+  // and border weights below
+  template <typename Point> friend class Surface_mesh_relaxation_rows;
+
 public:
   // cotangents are clamped to those of angles in [0.1, 179.9] degrees
   static constexpr double max_cotangent = 572.9572133543033;
