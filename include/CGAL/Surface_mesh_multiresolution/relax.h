@@ -49,8 +49,8 @@ struct Mesh_relaxation_rows<CGAL::Surface_mesh<Point> > : Surface_mesh_relaxatio
 };
 
 // Everything relax() and relaxation_operator() share: the validated index view of the mesh,
-// its coordinates, the constrained flags and the weight builder. With `one_shot` (weights used
-// once, computed as they are applied) on a mesh whose halfedges give the rows
+// its coordinates, the constrained flags and the weight builder. With `one_shot` (one set of
+// weights, used once: computed as they are applied) on a mesh whose halfedges give the rows
 // (Mesh_relaxation_rows), the index view is built only if those rows cannot be used.
 template <typename TriangleMesh, typename NamedParameters>
 struct Relaxation_setup
@@ -273,9 +273,10 @@ void relax(TriangleMesh& tm, const NamedParameters& np = parameters::default_val
   const unsigned int iterations = channels.iterations;
   const auto& maps = channels.maps;
   constexpr std::size_t attribute_dimension = internal::Relaxed_channels<NamedParameters>::attribute_dimension;
-  // every step's weights used once (new weights for the moved geometry, or one step): computed
-  // as they are applied, from the mesh's own halfedges where it has them
-  internal::Relaxation_setup<TriangleMesh, NamedParameters> setup(tm, np, geometry || iterations == 1);
+  // A single step reads its rows from the mesh's own halfedges where it has them; several
+  // steps build the index view, whose ring pairing the next steps read (ten steps on the
+  // dragon: 0.33-0.36 s, against 0.69 s walking the halfedges at every step)
+  internal::Relaxation_setup<TriangleMesh, NamedParameters> setup(tm, np, iterations == 1);
   Vertex_point_map vpm = choose_parameter(get_parameter(np, CGAL::internal_np::vertex_point),
                                           get_property_map(CGAL::vertex_point, tm));
 
