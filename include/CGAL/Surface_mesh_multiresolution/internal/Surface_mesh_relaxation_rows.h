@@ -15,7 +15,7 @@
 #include <CGAL/Surface_mesh_multiresolution/Relaxation_row_rule.h>
 #include <CGAL/Surface_mesh_multiresolution/Relaxation_scheme.h>
 
-#include <CGAL/Surface_mesh/Surface_mesh.h>
+#include <CGAL/Surface_mesh/Surface_mesh_fwd.h>
 
 #include <algorithm>
 #include <atomic>
@@ -130,67 +130,14 @@ public:
         }
         for(std::size_t j = 0; j < g; ++j)
         {
-        const std::size_t i = i0 + j, n = count[j];
-        const std::vector<Step>& walk = walks[j];
-        if(!distinct_targets(walk.data(), n, scratch))
-        {
-          ambiguous = true;
-          return;
-        }
-        // The corners are the walk's face halfedges. The apex of corner r is the target of
-        // the walk's next halfedge (the opposite of the corner's predecessor in its face),
-        // whose face says whether the corner is some corner's twin.
-        corner.clear();
-        bool border = false;
-        for(std::size_t r = 0; r < n; ++r)
-          if(walk[r].face != invalid_index)
+          if(!distinct_targets(walks[j].data(), count[j], scratch))
           {
-            corner.push_back(static_cast<Index>(r));
-            border = border || walk[r].opposite_on_border || walk[r + 1 < n ? r + 1 : 0].face == invalid_index;
+            ambiguous = true;
+            return;
           }
-        sort_by_face(walk.data(), corner);
-        const std::size_t d = corner.size();
-        listed += d;
-        if(col.size() < 2 * d + 1)
-        {
-          col.resize(2 * d + 1);
-          val.resize(2 * d + 1);
-        }
-        std::size_t length = 0;
-        if(d == 0 || (fixed != nullptr && fixed[i]))
-        {
-          col[0] = static_cast<Index>(i);
-          val[0] = 1.;
-          length = 1;
-        }
-        else if(border)
-        {
-          // the border neighbours in the index path's order: targets of corners whose edge
-          // has no second face, then apexes of corners that are no corner's twin
-          for(Index r : corner)
-            if(walk[r].opposite_on_border)
-              col[length++] = walk[r].target;
-          for(Index r : corner)
-          {
-            const Step& after = walk[r + 1 < n ? r + 1 : 0];
-            if(after.face == invalid_index)
-              col[length++] = after.target;
-          }
-          Builder::border_weights(scheme, i, xyz, length, col.data(), val.data());
-        }
-        else
-        {
-          length = d;
-          for(std::size_t k = 0; k < d; ++k)
-          {
-            const Step& c = walk[corner[k]];
-            col[k] = c.target;
-            val[k] = scheme == Relaxation_scheme::UNIFORM ? 1. / double(d) : m_cotangent[c.halfedge] + m_cotangent[c.halfedge ^ 1];
-          }
-          if(scheme != Relaxation_scheme::UNIFORM)
-            Builder::normalised_curvature_row(d, val.data());
-        }
-        apply_row(i, col.data(), val.data(), length);
+          const std::size_t length = row(scheme, i0 + j, walks[j].data(), count[j], xyz, fixed, corner, col, val);
+          listed += corner.size();
+          apply_row(i0 + j, col.data(), val.data(), length);
         }
       }
       corner_count += listed;
@@ -215,6 +162,63 @@ private:
   {
     if(f < m_mesh.number_of_faces())
       throw std::invalid_argument(triangle_defect(m_mesh, Face_index(static_cast<typename Mesh::size_type>(f)), f));
+  }
+
+  // Row i from the walk around vertex i (n steps) into col, val (resized as needed), the
+  // index path's row; returns its length. corner: the walk's positions of the corners.
+  std::size_t row(Relaxation_scheme scheme, std::size_t i, const Step* walk, std::size_t n, const double* xyz,
+                  const unsigned char* fixed, std::vector<Index>& corner, std::vector<Index>& col, std::vector<double>& val) const
+  {
+    // The corners are the walk's face halfedges. The apex of corner r is the target of the
+    // walk's next halfedge (the opposite of the corner's predecessor in its face), whose face
+    // says whether the corner is some corner's twin.
+    corner.clear();
+    bool border = false;
+    for(std::size_t r = 0; r < n; ++r)
+      if(walk[r].face != invalid_index)
+      {
+        corner.push_back(static_cast<Index>(r));
+        border = border || walk[r].opposite_on_border || walk[r + 1 < n ? r + 1 : 0].face == invalid_index;
+      }
+    sort_by_face(walk, corner);
+    const std::size_t d = corner.size();
+    if(col.size() < 2 * d + 1)
+    {
+      col.resize(2 * d + 1);
+      val.resize(2 * d + 1);
+    }
+    if(d == 0 || (fixed != nullptr && fixed[i]))
+    {
+      col[0] = static_cast<Index>(i);
+      val[0] = 1.;
+      return 1;
+    }
+    if(border)
+    {
+      // the border neighbours in the index path's order: targets of corners whose edge has no
+      // second face, then apexes of corners that are no corner's twin
+      std::size_t length = 0;
+      for(Index r : corner)
+        if(walk[r].opposite_on_border)
+          col[length++] = walk[r].target;
+      for(Index r : corner)
+      {
+        const Step& after = walk[r + 1 < n ? r + 1 : 0];
+        if(after.face == invalid_index)
+          col[length++] = after.target;
+      }
+      Builder::border_weights(scheme, i, xyz, length, col.data(), val.data());
+      return length;
+    }
+    for(std::size_t k = 0; k < d; ++k)
+    {
+      const Step& c = walk[corner[k]];
+      col[k] = c.target;
+      val[k] = scheme == Relaxation_scheme::UNIFORM ? 1. / double(d) : m_cotangent[c.halfedge] + m_cotangent[c.halfedge ^ 1];
+    }
+    if(scheme != Relaxation_scheme::UNIFORM)
+      Builder::normalised_curvature_row(d, val.data());
+    return d;
   }
 
   // Writes the outgoing halfedges of vertex v0 + j, j < g, in walks[j][0..count[j]) in the
