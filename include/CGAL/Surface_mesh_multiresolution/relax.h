@@ -91,9 +91,11 @@ struct Relaxation_setup
     }
     else
       build_index_view();
-    // the mesh's own points are read in parallel (other maps: one thread, as the user may not expect otherwise)
+    // the mesh's own points of floating-point coordinates are read in parallel (other maps and
+    // number types, e.g. reference-counted exact numbers: one thread, as their users may expect)
     read_coordinates(mesh.vertices, vpm, gt, xyz,
-                     std::is_same<Vertex_point_map, typename boost::property_map<TriangleMesh, CGAL::vertex_point_t>::const_type>::value);
+                     std::is_floating_point<typename Geom_traits::FT>::value
+                       && std::is_same<Vertex_point_map, typename boost::property_map<TriangleMesh, CGAL::vertex_point_t>::const_type>::value);
     if(!std::is_same<Vertex_constraint_map, Static_boolean_property_map<vertex_descriptor, false> >::value)
     {
       fixed.resize(mesh.number_of_vertices());
@@ -267,6 +269,7 @@ void relax(TriangleMesh& tm, const NamedParameters& np = parameters::default_val
   using parameters::choose_parameter;
   using parameters::get_parameter;
   typedef typename GetVertexPointMap<TriangleMesh, NamedParameters>::type Vertex_point_map;
+  typedef typename GetGeomTraits<TriangleMesh, NamedParameters>::type Geom_traits;
 
   const internal::Relaxed_channels<NamedParameters> channels(np);
   const bool geometry = channels.geometry;
@@ -333,7 +336,8 @@ void relax(TriangleMesh& tm, const NamedParameters& np = parameters::default_val
   }
   if(geometry)
     internal::write_coordinates(setup.mesh.vertices, vpm, setup.gt, setup.xyz,
-                                std::is_same<Vertex_point_map, typename boost::property_map<TriangleMesh, CGAL::vertex_point_t>::type>::value);
+                                std::is_floating_point<typename Geom_traits::FT>::value
+                                  && std::is_same<Vertex_point_map, typename boost::property_map<TriangleMesh, CGAL::vertex_point_t>::type>::value);
   if(attribute_dimension > 0)
     internal::write_channels(maps, setup.mesh.vertices, attributes);
 }
