@@ -19,10 +19,9 @@
 
 #include <algorithm>
 #include <atomic>
+#include <bitset>
 #include <cstddef>
-#include <cstdint>
 #include <stdexcept>
-#include <type_traits>
 #include <vector>
 
 namespace CGAL {
@@ -225,7 +224,8 @@ private:
   // order of the walk (each the opposite of the previous one's predecessor); false if a walk
   // does not come back (not a valid halfedge graph). The g walks advance together: each step
   // is a scattered read that depends on the one before, so one walk at a time waits on every
-  // read in turn, where g walks overlap theirs (a relax() step on the dragon: 10 % less time).
+  // read in turn, where g walks overlap theirs (a relax() step on the dragon: about 10 % less
+  // time, in one comparison on a noisy machine).
   bool walk_around(std::size_t v0, std::size_t g, std::vector<Step>* walks, std::size_t* count) const
   {
     const Mesh& m = m_mesh;
@@ -275,13 +275,10 @@ private:
     if(n <= 32)
     {
       // as many bits set as targets (their residues modulo 64): distinct without comparing pairs
-      std::uint64_t bits = 0;
+      std::bitset<64> bits;
       for(std::size_t k = 0; k < n; ++k)
-        bits |= std::uint64_t(1) << (walk[k].target & 63);
-      std::size_t set = 0;
-      for(; bits != 0; bits &= bits - 1)
-        ++set;
-      if(set == n)
+        bits.set(walk[k].target & 63);
+      if(bits.count() == n)
         return true;
       for(std::size_t k = 1; k < n; ++k)
         for(std::size_t l = 0; l < k; ++l)
