@@ -686,3 +686,70 @@ TEST_CASE("a level's collapses are checked in parallel and the first refused one
   CHECK(with_refusals(odd / 5, 4 * odd / 5) == neighbours);
   CHECK(with_refusals(4 * odd / 5, odd / 5) == far);
 }
+
+TEST_CASE("crossed collapses are refused by the selection rule and by the reader's checks", "[attack][io]")
+{
+  using SMR::internal::Index;
+  // Two interior vertices o1, o2 of a grid that are not neighbours and share two neighbours a
+  // and b: o1 -> a with o2 -> b crosses (b next to o1, a next to o2), each collapse alone is valid
+  const Mesh m = smr_test::planar_grid<Mesh>(8, 0.1);
+  SMR::internal::Indexed_mesh<Mesh> im;
+  SMR::internal::build_indexed_mesh(m, get(CGAL::vertex_index, m), im);
+  const std::size_t n = im.number_of_vertices();
+  SMR::internal::Triangle_halfedges th;
+  th.build(n, im.triangles, true);
+  std::vector<unsigned char> on_border(n, 0);
+  for(std::size_t h = 3 * th.nf; h < th.source.size(); ++h)
+    on_border[th.source[h]] = on_border[th.target[h]] = 1;
+  auto neighbour = [&](Index v, Index k) { return th.out_target[th.out_offsets[v] + k]; };
+  auto valence = [&](Index v) { return th.out_offsets[v + 1] - th.out_offsets[v]; };
+  auto adjacent = [&](Index u, Index v) {
+    for(Index k = 0; k < valence(u); ++k)
+      if(neighbour(u, k) == v) return true;
+    return false;
+  };
+  auto halfedge_between = [&](Index u, Index v) {
+    for(Index k = th.out_offsets[u]; k < th.out_offsets[u + 1]; ++k)
+      if(th.out_target[k] == v) return th.out[k];
+    return SMR::internal::invalid_index;
+  };
+  Index o1 = 0, o2 = 0, a = 0, b = 0;
+  bool found = false;
+  for(Index u = 0; u < n && !found; ++u)
+    for(Index v = u + 1; v < n && !found; ++v)
+    {
+      if(on_border[u] || on_border[v] || adjacent(u, v)) continue;
+      Index common[2], shared = 0;
+      for(Index k = 0; k < valence(u); ++k)
+        if(adjacent(v, neighbour(u, k)) && shared++ < 2) common[shared - 1] = neighbour(u, k);
+      if(shared != 2) continue;
+      o1 = u; o2 = v; a = common[0]; b = common[1]; found = true;
+    }
+  REQUIRE(found);
+  REQUIRE(SMR::internal::satisfies_link_condition(th, halfedge_between(o1, a), o1, a, on_border));
+  REQUIRE(SMR::internal::satisfies_link_condition(th, halfedge_between(o2, b), o2, b, on_border));
+  std::vector<Index> targets_of(n, SMR::internal::invalid_index);
+  targets_of[a] = o1;
+  CHECK(SMR::internal::crosses_a_taken_collapse(th, o2, b, [&](Index y) { return targets_of[y] != SMR::internal::invalid_index; },
+                                                [&](Index y) { return targets_of[y]; }));
+  SMR::internal::Pyramid_level lev;
+  for(Index v = 0; v < n; ++v)
+    lev.vertices.push_back(v);
+  auto level_with = [&](Index t1, Index t2) {
+    SMR::internal::Pyramid_level l = lev;
+    l.odd_rows = {o1, o2};                             // o1 < o2
+    l.collapse_targets = {t1, t2};
+    return SMR::internal::check_level_halfedges(l, th);
+  };
+  CHECK(level_with(a, b) == "two collapses cross (each target next to the other's odd vertex)");
+  // o2 into a neighbour that is not next to o1: no crossing, a valid level
+  Index c = SMR::internal::invalid_index;
+  for(Index k = 0; k < valence(o2); ++k)
+  {
+    const Index w = neighbour(o2, k);
+    if(w != a && w != b && !adjacent(o1, w) && SMR::internal::satisfies_link_condition(th, halfedge_between(o2, w), o2, w, on_border))
+      c = w;
+  }
+  REQUIRE(c != SMR::internal::invalid_index);
+  CHECK(level_with(a, c).empty());
+}

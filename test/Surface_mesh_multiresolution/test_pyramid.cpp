@@ -131,37 +131,48 @@ void check_levels(const TM& tm, const SMR::Pyramid<TM>& pyr)
       }
     CHECK(pyr.number_of_vertices(j) + odd.size() == pyr.number_of_vertices(j - 1));
 
-    // collapsing the odd vertices of M_{j-1} into their targets gives M_j: the same faces,
-    // named by the vertices' ranks in the input
+    // collapsing the odd vertices of M_{j-1} into their targets, first to last and last to
+    // first, gives M_j: the same faces, named by the vertices' ranks in the input
     const auto targets = pyr.collapse_targets(j);
-    std::map<typename boost::graph_traits<TM>::vertex_descriptor, std::size_t> gid;
-    for(const auto& p : vertex_of) gid[p.second] = p.first;
-    for(std::size_t q = 0; q < odd.size(); ++q)
+    CHECK(std::set<std::size_t>(targets.begin(), targets.end()).size() == targets.size());   // no shared target
+    const TM level_mesh = m;
+    for(const bool reversed : {false, true})
     {
-      const auto o = vertex_of[odd[q]], e = vertex_of[targets[q]];
-      typename boost::graph_traits<TM>::halfedge_descriptor h = boost::graph_traits<TM>::null_halfedge();
-      for(auto hh : CGAL::halfedges_around_source(o, m)) if(target(hh, m) == e) h = hh;
-      REQUIRE(h != boost::graph_traits<TM>::null_halfedge());
-      REQUIRE(CGAL::Euler::does_satisfy_link_condition(edge(h, m), m));
-      const auto kept = CGAL::Euler::collapse_edge(edge(h, m), m);
-      gid[kept] = targets[q];
-      vertex_of[targets[q]] = kept;
-    }
-    auto named_faces = [](const TM& mesh, const std::function<std::size_t(typename boost::graph_traits<TM>::vertex_descriptor)>& name) {
-      std::multiset<Triangle> out;
-      for(auto f : faces(mesh))
+      INFO((reversed ? "last collapse first" : "first collapse first"));
+      m = level_mesh;                                       // a copy: its handles named again, in order
+      vertex_of.clear();
+      r = 0;
+      for(auto v : vertices(m)) vertex_of[ids[r++]] = v;
+      std::map<typename boost::graph_traits<TM>::vertex_descriptor, std::size_t> gid;
+      for(const auto& p : vertex_of) gid[p.second] = p.first;
+      for(std::size_t i = 0; i < odd.size(); ++i)
       {
-        std::vector<std::size_t> t;
-        for(auto v : vertices_around_face(halfedge(f, mesh), mesh)) t.push_back(name(v));
-        std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
-        out.insert({{t[0], t[1], t[2]}});
+        const std::size_t q = reversed ? odd.size() - 1 - i : i;
+        const auto o = vertex_of[odd[q]], e = vertex_of[targets[q]];
+        typename boost::graph_traits<TM>::halfedge_descriptor h = boost::graph_traits<TM>::null_halfedge();
+        for(auto hh : CGAL::halfedges_around_source(o, m)) if(target(hh, m) == e) h = hh;
+        REQUIRE(h != boost::graph_traits<TM>::null_halfedge());
+        REQUIRE(CGAL::Euler::does_satisfy_link_condition(edge(h, m), m));
+        const auto kept = CGAL::Euler::collapse_edge(edge(h, m), m);
+        gid[kept] = targets[q];
+        vertex_of[targets[q]] = kept;
       }
-      return out;
-    };
-    std::map<typename boost::graph_traits<TM>::vertex_descriptor, std::size_t> next_gid;
-    std::size_t rr = 0;
-    for(auto v : vertices(levels[j])) next_gid[v] = pyr.vertices(j)[rr++];
-    CHECK(named_faces(m, [&](auto v) { return gid[v]; }) == named_faces(levels[j], [&](auto v) { return next_gid[v]; }));
+      auto named_faces = [](const TM& mesh, const std::function<std::size_t(typename boost::graph_traits<TM>::vertex_descriptor)>& name) {
+        std::multiset<Triangle> out;
+        for(auto f : faces(mesh))
+        {
+          std::vector<std::size_t> t;
+          for(auto v : vertices_around_face(halfedge(f, mesh), mesh)) t.push_back(name(v));
+          std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
+          out.insert({{t[0], t[1], t[2]}});
+        }
+        return out;
+      };
+      std::map<typename boost::graph_traits<TM>::vertex_descriptor, std::size_t> next_gid;
+      std::size_t rr = 0;
+      for(auto v : vertices(levels[j])) next_gid[v] = pyr.vertices(j)[rr++];
+      CHECK(named_faces(m, [&](auto v) { return gid[v]; }) == named_faces(levels[j], [&](auto v) { return next_gid[v]; }));
+    }
   }
 }
 
@@ -1197,15 +1208,28 @@ TEST_CASE("the look-ahead greedy selection and its parallel rounds take the coll
       std::vector<SMR::internal::Collapse> accepted;
       SMR::internal::select_collapses(th, xyz.data(), cost, budget, on_border, locked, accepted, window);
       // the reference: the th.n cheapest admissible halfedges in (cost, halfedge) order (half as
-      // many again each time fewer than th.n / 16 + 1 are taken), taken when both ends are free
-      // and the tests pass, its source's closed 1-ring then locked
+      // many again each time fewer than th.n / 16 + 1 are taken), taken when the source is in no
+      // taken source's closed 1-ring, the target is no taken target, no taken o' -> e' has e
+      // next to o' and e' next to o, and the tests pass (each rule checked against every taken
+      // collapse)
       std::vector<std::pair<double, Index> > order;
       for(Index h = 0; h < th.source.size(); ++h)
         if(!on_border[th.source[h]] || th.is_border_edge(h))
           order.emplace_back(*cost(th.source[h], th.target[h]), h);
       std::sort(order.begin(), order.end());
-      std::vector<unsigned char> taken(th.n, 0);
+      auto adjacent = [&](Index a, Index b) {
+        for(Index k = th.out_offsets[a]; k < th.out_offsets[a + 1]; ++k)
+          if(th.out_target[k] == b) return true;
+        return false;
+      };
+      auto admitted = [&](const std::vector<SMR::internal::Collapse>& taken, Index o, Index e) {
+        for(const SMR::internal::Collapse& t : taken)
+          if(t.o == o || adjacent(t.o, o) || t.e == e || (adjacent(t.o, e) && adjacent(o, t.e)))
+            return false;
+        return true;
+      };
       std::vector<SMR::internal::Collapse> expected;
+      std::size_t target_next_to_another_source = 0;
       std::size_t considered = (std::min)(order.size(), std::size_t(th.n));
       for(std::size_t i = 0; i < order.size(); ++i)
       {
@@ -1216,15 +1240,16 @@ TEST_CASE("the look-ahead greedy selection and its parallel rounds take the coll
         }
         const auto& c = order[i];
         const Index h = c.second, o = th.source[h], e = th.target[h];
-        if(expected.size() >= budget || taken[o] || taken[e]
+        if(expected.size() >= budget || !admitted(expected, o, e)
            || !SMR::internal::satisfies_link_condition(th, h, o, e, on_border) || SMR::internal::does_collapse_flip_a_face(th, o, e, xyz.data()))
           continue;
-        taken[o] = 1;
-        for(Index k = th.out_offsets[o]; k < th.out_offsets[o + 1]; ++k)
-          taken[th.out_target[k]] = 1;
+        for(const SMR::internal::Collapse& t : expected)
+          target_next_to_another_source += adjacent(t.o, e) ? 1 : 0;
         expected.push_back(SMR::internal::Collapse{o, e});
       }
       REQUIRE(accepted.size() == expected.size());
+      if(budget != 25)
+        CHECK(target_next_to_another_source > 0);   // the rule is used: targets in another source's 1-ring
       if(budget == 25)
         CHECK(accepted.size() == 25);
       else

@@ -325,8 +325,10 @@ std::vector<std::vector<double> > read_input_values(const Indexed_mesh<TriangleM
  * set of half-edge collapses \f$ o \to e \f$ is chosen in increasing Garland-Heckbert cost
  * \f$ (Q_o + Q_e)(p_e) \f$ (any SMS cost policy through `get_cost`; quadrics accumulate over the
  * levels); among the \f$ n \f$ cheapest candidates of a level of \f$ n \f$ vertices (more while
- * fewer than \f$ n/16 \f$ are accepted), a collapse is accepted when both ends are free, the
- * link condition holds and no face flips, and the closed 1-ring of \f$ o \f$ is then locked. Border vertices only collapse
+ * fewer than \f$ n/16 \f$ are accepted), a collapse is accepted when \f$ o \f$ is free (not in the
+ * closed 1-ring of an accepted source), \f$ e \f$ is the target of no accepted collapse, no accepted
+ * \f$ o' \to e' \f$ crosses it (\f$ e \f$ a neighbour of \f$ o' \f$ and \f$ e' \f$ one of \f$ o \f$), the link
+ * condition holds and no face flips; the closed 1-ring of \f$ o \f$ is then locked. Border vertices only collapse
  * along border edges. The relaxation weights \f$ \lambda^k \f$ are computed on \f$ M_k \f$, the
  * details of every vertex and every channel are stored, then the odd vertices are collapsed
  * (the kept vertex keeps its position, so every \f$ M_k \f$ is a subset of the input's vertices).

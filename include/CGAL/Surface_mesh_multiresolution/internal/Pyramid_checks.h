@@ -45,8 +45,9 @@ namespace internal {
 //      (each M_k is a halfedge mesh);
 //  (7) collapses: on M_k, every odd vertex o is joined to its target e by an edge, no two
 //      odd vertices are neighbours (the independent set of the selection), a border vertex
-//      collapses along a border edge, and the link condition holds: the collapses are those
-//      decompose() may accept, which the vertex splits of an adaptive reconstruction rely on.
+//      collapses along a border edge, no two collapses cross (e next to o' and e' next to o)
+//      and the link condition holds: the collapses are those decompose() may accept, which
+//      the vertex splits of an adaptive reconstruction rely on.
 // The checks touch every record once per level (the face checks replay the vertex splits and
 // build each level's halfedges): O(size of the pyramid) apart from sorting each vertex's
 // out-going edges.
@@ -167,10 +168,18 @@ inline std::string check_level_halfedges(const Pyramid_level& lev, const Triangl
     on_border[th.source[h]] = on_border[th.target[h]] = 1;
   std::vector<unsigned char> is_odd;
   odd_row_flags(lev, is_odd);
+  Index_array source_of_target(n);                         // read only where a target is flagged
+  std::vector<unsigned char> is_target(n, 0);
+  for(std::size_t q = 0; q < lev.odd_rows.size(); ++q)
+  {
+    is_target[lev.collapse_targets[q]] = 1;
+    source_of_target[lev.collapse_targets[q]] = lev.odd_rows[q];
+  }
   // the collapses checked in parallel blocks; the refusal reported is that of the first
   // refused collapse, as a sequential loop finds it
   static const char* const why[] = {"", "two odd vertices are neighbours", "a collapse target is not a neighbour of its odd vertex",
-                                    "a border vertex collapses off the border", "a collapse breaks the link condition"};
+                                    "a border vertex collapses off the border", "two collapses cross (each target next to the other's odd vertex)",
+                                    "a collapse breaks the link condition"};
   auto refusal = [&](std::size_t q) {
     const Index o = lev.odd_rows[q], e = lev.collapse_targets[q];
     Index h = invalid_index;
@@ -182,7 +191,9 @@ inline std::string check_level_halfedges(const Pyramid_level& lev, const Triangl
     }
     if(h == invalid_index) return 2;
     if(on_border[o] && !th.is_border_edge(h)) return 3;
-    return satisfies_link_condition(th, h, o, e, on_border) ? 0 : 4;
+    if(crosses_a_taken_collapse(th, o, e, [&](Index y) { return is_target[y] != 0; }, [&](Index y) { return source_of_target[y]; }))
+      return 4;
+    return satisfies_link_condition(th, h, o, e, on_border) ? 0 : 5;
   };
   const std::size_t m = lev.odd_rows.size();
   const std::size_t first = first_position_where(m, [&](std::size_t q) { return refusal(q) != 0; });
