@@ -1205,8 +1205,9 @@ TEST_CASE("the look-ahead greedy selection and its parallel rounds take the coll
     for(const std::size_t budget : {std::size_t(-1), std::size_t(25)})
     {
       std::vector<unsigned char> on_border, locked;
+      SMR::internal::Index_array source_of_target;
       std::vector<SMR::internal::Collapse> accepted;
-      SMR::internal::select_collapses(th, xyz.data(), cost, budget, on_border, locked, accepted, window);
+      SMR::internal::select_collapses(th, xyz.data(), cost, budget, on_border, locked, source_of_target, accepted, window);
       // the reference: the th.n cheapest admissible halfedges in (cost, halfedge) order (half as
       // many again each time fewer than th.n / 16 + 1 are taken), taken when the source is in no
       // taken source's closed 1-ring, the target is no taken target, no taken o' -> e' has e

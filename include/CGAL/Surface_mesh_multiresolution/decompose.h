@@ -115,7 +115,7 @@ private:
   void select(std::size_t budget)
   {
     select_collapses(m_builder.connectivity(), xyz().data(), [&](Index o, Index e) { return m_cost.cost(o, e); }, budget,
-                     m_on_border, m_locked, m_accepted);
+                     m_on_border, m_locked, m_source_of_target, m_accepted);
     // in increasing o (the sources are distinct): an ordered compaction of the rows, not a sort
     m_target_of.assign(rows(), invalid_index);
     for(const Collapse& c : m_accepted)
@@ -215,6 +215,7 @@ private:
   Sparse_weights m_weights;                     // lambda^k of the current level
   std::vector<Relaxation_row_rule> m_rules;
   std::vector<unsigned char> m_on_border, m_locked, m_is_odd;
+  Index_array m_source_of_target;               // selection scratch, kept across the levels
   std::vector<Collapse> m_accepted;
   std::vector<Index> m_target_of;               // the target of each accepted collapse's source, else invalid_index
   std::vector<unsigned char> m_face_removed;    // the faces of M_k a level removes

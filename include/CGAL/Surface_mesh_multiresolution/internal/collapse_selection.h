@@ -305,7 +305,7 @@ template <typename SortRest>
 void take_greedily(const Triangle_halfedges& th, const double* xyz, const Key_array& candidates,
                    std::size_t sorted, std::size_t all, const SortRest& sort_rest, const Candidate_key& key, std::size_t budget,
                    const std::vector<unsigned char>& on_border, std::vector<unsigned char>& locked,
-                   std::vector<Collapse>& accepted, std::size_t considered, std::size_t minimum)
+                   Index_array& source_of_target, std::vector<Collapse>& accepted, std::size_t considered, std::size_t minimum)
 {
   // The candidates come in cost order, that is at random places of the level's arrays: on a
   // mesh larger than the cache each test waits for a dozen misses. Why by hand: the loop keeps
@@ -314,8 +314,8 @@ void take_greedily(const Triangle_halfedges& th, const double* xyz, const Key_ar
   // positions), so that these misses overlap with the decisions before them. The decisions are
   // those of the plain loop: only cache hints are added, every candidate is checked again when
   // its turn comes.
-  // `locked`: the Selection_lock flags of every vertex; the source of each taken target
-  Index_array source_of_target(th.n);
+  // `locked`: the Selection_lock flags of every vertex (all 0 on entry); `source_of_target`:
+  // at least th.n entries, the source of each taken target (others not read)
   auto may_take = [&](Index o, Index e) { return !(locked[o] & in_a_taken_star) && !(locked[e] & taken_target); };
   struct Pending { Index h, o, e; };
   constexpr std::size_t window = 16, ring_step = window / 2, position_step = 3, gather_ahead = 32;
@@ -416,14 +416,14 @@ void take_greedily(const Triangle_halfedges& th, const double* xyz, const Key_ar
 template <typename SortRest>
 void take_greedily_in_rounds(const Triangle_halfedges& th, const double* xyz, const Key_array& candidates,
                              std::size_t sorted, std::size_t all, const SortRest& sort_rest, const Candidate_key& key, std::size_t budget,
-                             const std::vector<unsigned char>& on_border, std::vector<Collapse>& accepted,
-                             std::size_t considered, std::size_t minimum, std::size_t window)
+                             const std::vector<unsigned char>& on_border, Index_array& source_of_target,
+                             std::vector<Collapse>& accepted, std::size_t considered, std::size_t minimum, std::size_t window)
 {
   constexpr Index none = invalid_index;
   constexpr std::size_t grain = 512;
   std::unique_ptr<std::atomic<Index>[]> lock(new std::atomic<Index>[th.n]), reserve(new std::atomic<Index>[th.n]),
                                         target_lock(new std::atomic<Index>[th.n]);
-  Index_array source_of_target(th.n);                       // written with target_lock, read rounds later
+  // source_of_target (at least th.n entries) is written with target_lock and read rounds later
   parallel_for_blocks(th.n, [&](std::size_t first, std::size_t last) {
     for(std::size_t v = first; v < last; ++v)
     {
@@ -721,7 +721,9 @@ void sort_candidate_rest(const Triangle_halfedges& th, const CostOfRows& cost, c
 // no face flipped), and then o and its 1-ring are locked. All tests are made on M_k (why they
 // hold for the collapses together: the rule's comment). `cost(o, e)` takes rows; xyz: 3
 // doubles per row. The candidates live only here, so the temporary memory of a level follows
-// its size. At most `budget` collapses are accepted. `window`: 0 chooses the loop below four
+// its size. At most `budget` collapses are accepted. `locked` and `source_of_target` are
+// scratch (kept by the caller so that the levels reuse their memory: a fresh array per level
+// cost 2 % of the dragon's decomposition in page faults and its construction loop). `window`: 0 chooses the loop below four
 // threads and parallel rounds (take_greedily_in_rounds(), windows of the level's n / 64
 // candidates, at least 4096) from four on; `sequential_selection` forces the loop, any other
 // value the rounds with windows of that many candidates. The accepted collapses are the same.
@@ -729,9 +731,11 @@ constexpr std::size_t sequential_selection = ~std::size_t(0);
 
 template <typename CostOfRows>
 void select_collapses(const Triangle_halfedges& th, const double* xyz, const CostOfRows& cost, std::size_t budget,
-                      std::vector<unsigned char>& on_border, std::vector<unsigned char>& locked, std::vector<Collapse>& accepted,
-                      std::size_t window = 0)
+                      std::vector<unsigned char>& on_border, std::vector<unsigned char>& locked, Index_array& source_of_target,
+                      std::vector<Collapse>& accepted, std::size_t window = 0)
 {
+  if(source_of_target.size() < th.n)
+    source_of_target.resize(th.n);                        // the first level's size: the next levels reuse it
   Candidate_key key(0);
   std::size_t all = 0;
   std::uint64_t limit = 0;
@@ -753,11 +757,12 @@ void select_collapses(const Triangle_halfedges& th, const double* xyz, const Cos
   if(window == sequential_selection)
   {
     locked.assign(th.n, 0);
-    take_greedily(th, xyz, candidates, sorted, all, sort_rest, key, budget, on_border, locked, accepted, th.n, th.n / 16 + 1);
+    take_greedily(th, xyz, candidates, sorted, all, sort_rest, key, budget, on_border, locked, source_of_target, accepted, th.n,
+                  th.n / 16 + 1);
   }
   else
-    take_greedily_in_rounds(th, xyz, candidates, sorted, all, sort_rest, key, budget, on_border, accepted, th.n, th.n / 16 + 1,
-                            window);
+    take_greedily_in_rounds(th, xyz, candidates, sorted, all, sort_rest, key, budget, on_border, source_of_target, accepted, th.n,
+                            th.n / 16 + 1, window);
 }
 
 } // namespace internal
