@@ -619,21 +619,37 @@ TEST_CASE("adaptive faces: keeping exactly the vertices of M_k gives the faces o
   }
 }
 
+// the halfedges of a planar grid of size x size squares (smr_test::planar_grid) and its
+// border flags
+struct Grid_halfedges
+{
+  Grid_halfedges(int size, double jitter)
+  {
+    const Mesh m = smr_test::planar_grid<Mesh>(size, jitter);
+    SMR::internal::Indexed_mesh<Mesh> im;
+    SMR::internal::build_indexed_mesh(m, get(CGAL::vertex_index, m), im);
+    n = im.number_of_vertices();
+    th.build(n, im.triangles, true);
+    on_border.assign(n, 0);
+    for(std::size_t h = 3 * th.nf; h < th.source.size(); ++h)
+      on_border[th.source[h]] = on_border[th.target[h]] = 1;
+  }
+  std::size_t n = 0;
+  SMR::internal::Triangle_halfedges th;
+  std::vector<unsigned char> on_border;
+};
+
 TEST_CASE("a level's collapses are checked in parallel and the first refused one is reported", "[attack][io]")
 {
   using SMR::internal::Index;
   // a level of more than two parallel blocks of collapses (the blocks are 8192 long): a greedy
   // independent set of interior vertices of a 300 x 300 grid, each collapsed into its first
   // free neighbour along an edge that satisfies the link condition
-  const Mesh m = smr_test::planar_grid<Mesh>(300, 0.2);
-  SMR::internal::Indexed_mesh<Mesh> im;
-  SMR::internal::build_indexed_mesh(m, get(CGAL::vertex_index, m), im);
-  const std::size_t n = im.number_of_vertices();
-  SMR::internal::Triangle_halfedges th;
-  th.build(n, im.triangles, true);
-  std::vector<unsigned char> on_border(n, 0), taken(n, 0);
-  for(std::size_t h = 3 * th.nf; h < th.source.size(); ++h)
-    on_border[th.source[h]] = on_border[th.target[h]] = 1;
+  const Grid_halfedges grid(300, 0.2);
+  const SMR::internal::Triangle_halfedges& th = grid.th;
+  const std::vector<unsigned char>& on_border = grid.on_border;
+  const std::size_t n = grid.n;
+  std::vector<unsigned char> taken(n, 0);
   SMR::internal::Pyramid_level lev;
   for(Index v = 0; v < n; ++v)
     lev.vertices.push_back(v);
@@ -692,15 +708,10 @@ TEST_CASE("crossed collapses are refused by the selection rule and by the reader
   using SMR::internal::Index;
   // Two interior vertices o1, o2 of a grid that are not neighbours and share two neighbours a
   // and b: o1 -> a with o2 -> b crosses (b next to o1, a next to o2), each collapse alone is valid
-  const Mesh m = smr_test::planar_grid<Mesh>(8, 0.1);
-  SMR::internal::Indexed_mesh<Mesh> im;
-  SMR::internal::build_indexed_mesh(m, get(CGAL::vertex_index, m), im);
-  const std::size_t n = im.number_of_vertices();
-  SMR::internal::Triangle_halfedges th;
-  th.build(n, im.triangles, true);
-  std::vector<unsigned char> on_border(n, 0);
-  for(std::size_t h = 3 * th.nf; h < th.source.size(); ++h)
-    on_border[th.source[h]] = on_border[th.target[h]] = 1;
+  const Grid_halfedges grid(8, 0.1);
+  const SMR::internal::Triangle_halfedges& th = grid.th;
+  const std::vector<unsigned char>& on_border = grid.on_border;
+  const std::size_t n = grid.n;
   auto neighbour = [&](Index v, Index k) { return th.out_target[th.out_offsets[v] + k]; };
   auto valence = [&](Index v) { return th.out_offsets[v + 1] - th.out_offsets[v]; };
   auto adjacent = [&](Index u, Index v) {
