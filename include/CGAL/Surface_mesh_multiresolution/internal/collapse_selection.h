@@ -722,8 +722,8 @@ void sort_candidate_rest(const Triangle_halfedges& th, const CostOfRows& cost, c
 // hold for the collapses together: the rule's comment). `cost(o, e)` takes rows; xyz: 3
 // doubles per row. The candidates live only here, so the temporary memory of a level follows
 // its size. At most `budget` collapses are accepted. `locked` and `source_of_target` are
-// scratch (kept by the caller so that the levels reuse their memory: a fresh array per level
-// cost 2 % of the dragon's decomposition in page faults and its construction loop). `window`: 0 chooses the loop below four
+// scratch, kept by the caller so that the levels reuse their memory (a fresh array per level
+// showed in the dragon's profile as page faults and its growth loop, about 1 % of the samples). `window`: 0 chooses the loop below four
 // threads and parallel rounds (take_greedily_in_rounds(), windows of the level's n / 64
 // candidates, at least 4096) from four on; `sequential_selection` forces the loop, any other
 // value the rounds with windows of that many candidates. The accepted collapses are the same.
