@@ -739,10 +739,10 @@ TEST_CASE("crossed collapses are refused by the selection rule and by the reader
   REQUIRE(found);
   REQUIRE(SMR::internal::satisfies_link_condition(th, halfedge_between(o1, a), o1, a, on_border));
   REQUIRE(SMR::internal::satisfies_link_condition(th, halfedge_between(o2, b), o2, b, on_border));
-  std::vector<Index> targets_of(n, SMR::internal::invalid_index);
-  targets_of[a] = o1;
-  CHECK(SMR::internal::crosses_a_taken_collapse(th, o2, b, [&](Index y) { return targets_of[y] != SMR::internal::invalid_index; },
-                                                [&](Index y) { return targets_of[y]; }));
+  std::vector<Index> source_of(n, SMR::internal::invalid_index);   // o1 -> a taken
+  source_of[a] = o1;
+  CHECK(SMR::internal::crosses_a_taken_collapse(th, o2, b, [&](Index y) { return source_of[y] != SMR::internal::invalid_index; },
+                                                [&](Index y) { return source_of[y]; }));
   SMR::internal::Pyramid_level lev;
   for(Index v = 0; v < n; ++v)
     lev.vertices.push_back(v);

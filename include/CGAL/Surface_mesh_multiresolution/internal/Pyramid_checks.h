@@ -168,13 +168,9 @@ inline std::string check_level_halfedges(const Pyramid_level& lev, const Triangl
     on_border[th.source[h]] = on_border[th.target[h]] = 1;
   std::vector<unsigned char> is_odd;
   odd_row_flags(lev, is_odd);
-  Index_array source_of_target(n);                         // read only where a target is flagged
-  std::vector<unsigned char> is_target(n, 0);
+  std::vector<Index> source_of_target(n, invalid_index);   // the odd vertex of each target
   for(std::size_t q = 0; q < lev.odd_rows.size(); ++q)
-  {
-    is_target[lev.collapse_targets[q]] = 1;
     source_of_target[lev.collapse_targets[q]] = lev.odd_rows[q];
-  }
   // the collapses checked in parallel blocks; the refusal reported is that of the first
   // refused collapse, as a sequential loop finds it
   static const char* const why[] = {"", "two odd vertices are neighbours", "a collapse target is not a neighbour of its odd vertex",
@@ -191,7 +187,8 @@ inline std::string check_level_halfedges(const Pyramid_level& lev, const Triangl
     }
     if(h == invalid_index) return 2;
     if(on_border[o] && !th.is_border_edge(h)) return 3;
-    if(crosses_a_taken_collapse(th, o, e, [&](Index y) { return is_target[y] != 0; }, [&](Index y) { return source_of_target[y]; }))
+    if(crosses_a_taken_collapse(th, o, e, [&](Index y) { return source_of_target[y] != invalid_index; },
+                                [&](Index y) { return source_of_target[y]; }))
       return 4;
     return satisfies_link_condition(th, h, o, e, on_border) ? 0 : 5;
   };
