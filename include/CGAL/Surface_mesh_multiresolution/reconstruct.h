@@ -84,11 +84,12 @@ void create_elements(CGAL::Surface_mesh<Point>& out, std::size_t nv, std::size_t
 }
 
 // The border halfedge out of v at the other end of the fan of faces that the border halfedge
-// g (which ends at v) borders, reached by turning around v from twin(g).
+// g (which ends at v) borders, reached by turning around v from twin(g). th: built by
+// Triangle_halfedges::build_twins() (or build()) on the face array.
 inline Index same_fan_border_halfedge(const Triangle_halfedges& th, Index g)
 {
   Index h = th.twin[g];                                      // out of v, in a face
-  for(std::size_t turns = 0; turns <= th.source.size(); ++turns)
+  for(std::size_t turns = 0; turns <= th.twin.size(); ++turns)
   {
     const Index into_v = Triangle_halfedges::prev_in_face(h);   // the halfedge before h in its face
     const Index t = th.twin[into_v];
@@ -104,28 +105,28 @@ inline Index same_fan_border_halfedge(const Triangle_halfedges& th, Index g)
 // At a vertex with several gaps (pinched between fans), the gaps are chained in a cycle as
 // Euler::add_face() does: g_i, incoming at the i-th gap, goes on with the outgoing border
 // halfedge of the next fan, so that the halfedges around the vertex form one cycle.
-inline std::vector<Index> border_successors(const Triangle_halfedges& th)
+inline std::vector<Index> border_successors(const Triangle_halfedges& th, const std::vector<Index>& tri)
 {
-  const std::size_t nh = th.source.size(), h0 = 3 * th.nf;
+  const std::size_t nh = th.twin.size(), h0 = 3 * th.nf;
   std::vector<Index> border_out(th.n, invalid_index), next(nh - h0);
   bool pinched = false;
   for(std::size_t g = h0; g < nh && !pinched; ++g)
   {
-    Index& b = border_out[th.source[g]];
+    Index& b = border_out[th.source_in(tri, static_cast<Index>(g))];
     pinched = (b != invalid_index);
     b = static_cast<Index>(g);
   }
   if(!pinched)
   {
     for(std::size_t g = h0; g < nh; ++g)
-      next[g - h0] = border_out[th.target[g]];
+      next[g - h0] = border_out[th.target_in(tri, static_cast<Index>(g))];
     return next;
   }
   std::vector<Index> offsets(th.n + 1, 0), incoming(nh - h0);   // border halfedges by target
-  for(std::size_t g = h0; g < nh; ++g) ++offsets[th.target[g] + 1];
+  for(std::size_t g = h0; g < nh; ++g) ++offsets[th.target_in(tri, static_cast<Index>(g)) + 1];
   for(std::size_t v = 0; v < th.n; ++v) offsets[v + 1] += offsets[v];
   std::vector<Index> fill(offsets.begin(), offsets.end() - 1);
-  for(std::size_t g = h0; g < nh; ++g) incoming[fill[th.target[g]]++] = static_cast<Index>(g);
+  for(std::size_t g = h0; g < nh; ++g) incoming[fill[th.target_in(tri, static_cast<Index>(g))]++] = static_cast<Index>(g);
   for(std::size_t v = 0; v < th.n; ++v)
   {
     const std::size_t m = offsets[v + 1] - offsets[v];
@@ -137,11 +138,11 @@ inline std::vector<Index> border_successors(const Triangle_halfedges& th)
 
 // Makes the empty mesh `out` the triangle mesh of `tri` (nv vertices, 3 rows per face, faces
 // in this order); vd receives the vertex of each row. The halfedges are linked directly
-// (set_next, set_target, set_face...) from the index halfedges of Triangle_halfedges, border
-// cycles included (also through pinched vertices). Why by hand: Euler::add_face() searches
-// the halfedges around each corner for every face, which was 40 % of a reconstruction of the
-// dragon (and fails on some orders of the faces around a pinched vertex); here every edge is
-// known with its twin.
+// (set_next, set_target, set_face...) from the twins of Triangle_halfedges::build_twins(),
+// border cycles included (also through pinched vertices). Why by hand: Euler::add_face()
+// searches the halfedges around each corner for every face, which was 40 % of a
+// reconstruction of the dragon (and fails on some orders of the faces around a pinched
+// vertex); here every edge is known with its twin.
 // \throws std::runtime_error if the faces are not those of a halfedge mesh (a directed edge
 // in two faces), not possible for the levels of a pyramid that check_pyramid() accepts
 template <typename FaceGraph>
@@ -152,11 +153,11 @@ void build_triangle_mesh(FaceGraph& out, std::size_t nv, const std::vector<Index
   typedef typename GT::halfedge_descriptor halfedge_descriptor;
   typedef typename GT::face_descriptor     face_descriptor;
   Triangle_halfedges th;
-  th.build(nv, tri);
+  th.build_twins(nv, tri);
   if(th.repeated_directed_edge)
     throw std::runtime_error("the faces do not form a halfedge mesh: a directed edge is shared by two faces");
-  const std::size_t nh = th.source.size(), h0 = 3 * th.nf;
-  const std::vector<Index> border_next = border_successors(th);
+  const std::size_t nh = th.twin.size(), h0 = 3 * th.nf;
+  const std::vector<Index> border_next = border_successors(th, tri);
   std::vector<halfedge_descriptor> edge_halfedge, hd(nh);
   std::vector<face_descriptor> fd;
   create_elements(out, nv, nh / 2, th.nf, vd, edge_halfedge, fd);
@@ -172,19 +173,21 @@ void build_triangle_mesh(FaceGraph& out, std::size_t nv, const std::vector<Index
     set_halfedge(fd[p], hd[3 * p], out);
     for(std::size_t k = 3 * p; k < 3 * p + 3; ++k)
     {
+      const Index next = Triangle_halfedges::next_in_face(static_cast<Index>(k));
       set_face(hd[k], fd[p], out);
-      set_target(hd[k], vd[th.target[k]], out);
-      set_next(hd[k], hd[Triangle_halfedges::next_in_face(static_cast<Index>(k))], out);
-      set_halfedge(vd[th.target[k]], hd[k], out);
+      set_target(hd[k], vd[tri[next]], out);
+      set_next(hd[k], hd[next], out);
+      set_halfedge(vd[tri[next]], hd[k], out);
     }
   }
   // border halfedges last, so that a border vertex's halfedge is an incoming border halfedge
   for(std::size_t g = h0; g < nh; ++g)
   {
+    const Index v = th.target_in(tri, static_cast<Index>(g));
     set_face(hd[g], GT::null_face(), out);
-    set_target(hd[g], vd[th.target[g]], out);
+    set_target(hd[g], vd[v], out);
     set_next(hd[g], hd[border_next[g - h0]], out);
-    set_halfedge(vd[th.target[g]], hd[g], out);
+    set_halfedge(vd[v], hd[g], out);
   }
 }
 
@@ -234,6 +237,7 @@ void reconstruct_values(const Pyramid<TriangleMesh>& pyr, std::size_t level, Val
 {
   const std::size_t nc = pyr.number_of_channels();
   Level_weights weights(pyr);
+  weights.reserve(pyr, level);
   ws.values.resize(nc);
   for(std::size_t c = 0; c < nc; ++c)
     ws.values[c].assign(pyr.coarse_values()[c].begin(), pyr.coarse_values()[c].end());

@@ -105,6 +105,10 @@ public:
   bool is_border_edge(Index h) const { return !has_face(h) || !has_face(twin[h]); }
   // the third vertex of the face of h (h must have a face)
   Index opposite_vertex(Index h) const { return target[next_in_face(h)]; }
+  // the ends of halfedge h read from the face array tri and the twins alone (after build() or
+  // build_twins()): a border halfedge runs against its twin
+  Index source_in(const std::vector<Index>& tri, Index h) const { return has_face(h) ? tri[h] : tri[next_in_face(twin[h])]; }
+  Index target_in(const std::vector<Index>& tri, Index h) const { return has_face(h) ? tri[next_in_face(h)] : tri[twin[h]]; }
 
   // tri: 3 vertex numbers (< nv) per face.
   // \throws std::invalid_argument when the halfedges (up to 6 per face) cannot be numbered by Index
@@ -142,6 +146,43 @@ public:
       add_border_halfedges(border_twins, with_apexes);
     m_sorted_first = std::vector<Index>();
     m_sorted = std::vector<std::pair<Index, Index> >();
+  }
+
+  // The twins alone, for a mesh's halfedges to be linked (build_triangle_mesh()): twin[h] for
+  // the face halfedges, then the border halfedges numbered as build() numbers them; source,
+  // target and the lists of outgoing halfedges are left empty (source_in() and target_in()
+  // give the ends). The rings are listed with their apexes, so that each twin is found in
+  // its own ring (the search in the neighbour's ring, a cache miss per edge, and the widened
+  // rows of the border halfedges were three quarters of the build that linking an output mesh
+  // made; the memory touched is about 40 % less).
+  // \throws std::invalid_argument as build()
+  void build_twins(std::size_t nv, const std::vector<Index>& tri)
+  {
+    if(tri.size() / 3 >= std::size_t(invalid_index) / 6)
+      throw std::invalid_argument("the mesh has too many faces (at most (2^32-1)/6 are supported)");
+    n = nv;
+    nf = tri.size() / 3;
+    list_outgoing_face_halfedges(tri, true);
+    sort_long_rings();
+    repeated_directed_edge = !match_twins_by_smaller_end();
+    if(repeated_directed_edge)
+      match_twins_first_come(tri);
+    for(Index_array* v : {&source, &target, &out, &out_target, &out_apex})
+      Index_array().swap(*v);
+    std::vector<Index>().swap(out_offsets);
+    m_sorted_first = std::vector<Index>();
+    m_sorted = std::vector<std::pair<Index, Index> >();
+    const std::size_t h0 = 3 * nf;
+    auto without_twin = [&](std::size_t h) { return twin[h] == invalid_index; };
+    const Ordered_compaction borders(h0, without_twin);
+    twin.resize(h0 + borders.size());
+    borders.visit([&](std::size_t h, std::size_t rank, bool border) {
+      if(border)                                     // (h's own entry: read by without_twin(h) before)
+      {
+        twin[h0 + rank] = static_cast<Index>(h);
+        twin[h] = static_cast<Index>(h0 + rank);
+      }
+    });
   }
 
 private:

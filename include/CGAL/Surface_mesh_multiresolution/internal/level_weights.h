@@ -45,6 +45,17 @@ public:
       m_all_stored = m_all_stored && stored(lev);
   }
 
+  // room for the weights of the levels from the coarsest down to `level` (reconstruct()):
+  // their arrays allocated once, at the size of M_level's
+  template <typename TriangleMesh>
+  void reserve(const Pyramid<TriangleMesh>& pyr, std::size_t level)
+  {
+    if(!computed())
+      return;
+    m_xyz.reserve(3 * pyr.number_of_vertices(level));
+    m_builder.reserve(pyr.number_of_vertices(level), 3 * pyr.number_of_faces(level));
+  }
+
   // whether the level holds its weights (store_weights(), or a file of format 1 or 2)
   bool stored(const Pyramid_level& lev) const
   {

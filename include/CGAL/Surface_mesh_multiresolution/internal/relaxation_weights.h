@@ -141,12 +141,26 @@ public:
       Index_array().swap(*v);             // (a chain of assignments would keep the capacities)
   }
 
+  // Room for the corner lists of connectivities of up to n vertices and `corners` face
+  // corners (3 per face): a sequence of growing connectivities (the levels of a
+  // reconstruction, from the coarsest) then fills arrays allocated once at their largest size
+  // instead of reallocating them, copying their contents and touching fresh pages, at every
+  // doubling (the 1-ring schemes' arrays; the halfedges of SOD are built per level).
+  void reserve(std::size_t n, std::size_t corners)
+  {
+    m_ring_offsets.reserve(n + 1);
+    for(Index_array* v : {&m_out, &m_out_target, &m_out_apex, &m_corner_twin})
+      v->reserve(corners);
+    m_apex_matched.reserve(corners);
+    m_cotangent.reserve(corners);
+  }
+
   // frees what the weights were computed with (not the halfedges)
   void release_weight_data()
   {
     m_has_corners = false;
     m_paired = false;
-    m_cotangent = std::vector<double>();
+    Uninitialized_vector<double>().swap(m_cotangent);
     std::vector<Index>().swap(m_ring_offsets);
     for(Index_array* v : {&m_out, &m_out_target, &m_out_apex, &m_corner_twin})
       Index_array().swap(*v);
@@ -773,7 +787,7 @@ private:
   const Index* m_offs = nullptr;
   const Index* m_outp = nullptr;
   Index m_h0 = 0;
-  std::vector<double> m_cotangent;
+  Uninitialized_vector<double> m_cotangent;      // every face corner's written by compute_cotangents()
   std::vector<std::array<double, 4> > m_hinge;
   std::vector<unsigned char> m_hinge_valid;
   std::vector<Index> m_local_columns;
