@@ -1052,6 +1052,24 @@ TEST_CASE("the index-based link condition agrees with CGAL's on every edge", "[p
   }
 }
 
+// build_twins() (the twins alone, for linking an output mesh) against build() on the same
+// faces: the same twins, border halfedges numbered alike, their ends read from the faces
+void check_twins_only(const SMR::internal::Triangle_halfedges& th, const std::vector<SMR::internal::Index>& tri)
+{
+  SMR::internal::Triangle_halfedges twins;
+  twins.build_twins(th.n, tri);
+  CHECK(twins.repeated_directed_edge == th.repeated_directed_edge);
+  CHECK(twins.source.empty());
+  CHECK(twins.out.empty());
+  REQUIRE(twins.twin.size() == th.twin.size());
+  for(SMR::internal::Index h = 0; h < th.twin.size(); ++h)
+  {
+    CHECK(twins.twin[h] == th.twin[h]);
+    CHECK(twins.source_in(tri, h) == th.source[h]);
+    CHECK(twins.target_in(tri, h) == th.target[h]);
+  }
+}
+
 TEST_CASE("Triangle_halfedges pairs the halfedges of the mesh, also when a directed edge repeats", "[pyramid][link]")
 {
   typedef SMR::internal::Index Index;
@@ -1103,6 +1121,7 @@ TEST_CASE("Triangle_halfedges pairs the halfedges of the mesh, also when a direc
         CHECK(th.out_target[k] == th.target[h]);
         CHECK(th.out_apex[k] == (th.has_face(h) ? th.opposite_vertex(h) : SMR::internal::invalid_index));
       }
+    check_twins_only(th, im.triangles);
   }
   // a face array where 0 -> 1 is in two faces (not a halfedge mesh): the pairing falls back to
   // first come first served and stays a pairing
@@ -1118,6 +1137,7 @@ TEST_CASE("Triangle_halfedges pairs the halfedges of the mesh, also when a direc
   CHECK(th.twin[0] == 3);                                    // 0 -> 1 of the first face pairs with 1 -> 0
   CHECK(!th.has_face(th.twin[6]));                           // the repeated 0 -> 1 gets a border twin
   CHECK(th.repeated_directed_edge);
+  check_twins_only(th, tri);
   // the same in a long ring (searched sorted): vertex 0 with 40 faces, 0 -> 1 in two of them
   std::vector<Index> fan;
   for(Index i = 1; i <= 40; ++i) fan.insert(fan.end(), {0, i, i + 1});
@@ -1134,6 +1154,7 @@ TEST_CASE("Triangle_halfedges pairs the halfedges of the mesh, also when a direc
   }
   CHECK(long_ring.twin[0] == 3 * 41);                        // the first 0 -> 1 pairs with 1 -> 0 (first come, first served)
   CHECK(!long_ring.has_face(long_ring.twin[3 * 40]));        // the second gets a border twin
+  check_twins_only(long_ring, fan);
 }
 
 TEST_CASE("the corners listed by source in parallel ranges are those of the sequential counting sort", "[pyramid][halfedges]")
