@@ -115,22 +115,14 @@ public:
   // \throws std::invalid_argument when the halfedges (up to 6 per face) cannot be numbered by Index
   void build(std::size_t nv, const std::vector<Index>& tri, bool with_apexes = false)
   {
-    if(tri.size() / 3 >= std::size_t(invalid_index) / 6)
-      throw std::invalid_argument("the mesh has too many faces (at most (2^32-1)/6 are supported)");
-    n = nv;
-    nf = tri.size() / 3;
     // room for border halfedges beside the face halfedges, so that add_border_halfedges()
-    // widens the rows in place (untouched capacity costs address space, not memory)
-    const std::size_t room = 3 * nf + (3 * nf) / 16 + 1024;
-    for(Index_array* v : {&out, &out_target, &twin})
+    // widens the rows in place
+    const std::size_t room = halfedges_with_border_room(tri.size());
+    for(Index_array* v : {&out, &out_target})
       v->reserve(room);
     if(with_apexes)
       out_apex.reserve(room);
-    list_outgoing_face_halfedges(tri, with_apexes);
-    sort_long_rings();
-    repeated_directed_edge = !match_twins_by_smaller_end();
-    if(repeated_directed_edge)
-      match_twins_first_come(tri);
+    pair_face_halfedges(nv, tri, with_apexes);
     // the face halfedges without a twin, in increasing order: border halfedge h0 + i is the twin of the i-th
     auto without_twin = [&](std::size_t h) { return twin[h] == invalid_index; };
     const Ordered_compaction borders(twin.size(), without_twin);
@@ -166,16 +158,7 @@ public:
   // \throws std::invalid_argument as build()
   void build_twins(std::size_t nv, const std::vector<Index>& tri)
   {
-    if(tri.size() / 3 >= std::size_t(invalid_index) / 6)
-      throw std::invalid_argument("the mesh has too many faces (at most (2^32-1)/6 are supported)");
-    n = nv;
-    nf = tri.size() / 3;
-    twin.reserve(3 * nf + (3 * nf) / 16 + 1024);     // the border halfedges appended without a copy, if they fit
-    list_outgoing_face_halfedges(tri, true);
-    sort_long_rings();
-    repeated_directed_edge = !match_twins_by_smaller_end();
-    if(repeated_directed_edge)
-      match_twins_first_come(tri);
+    pair_face_halfedges(nv, tri, true);
     for(Index_array* v : {&source, &target, &out, &out_target, &out_apex})
       Index_array().swap(*v);
     std::vector<Index>().swap(out_offsets);
@@ -195,9 +178,26 @@ public:
   }
 
 private:
-  void list_outgoing_face_halfedges(const std::vector<Index>& tri, bool with_apexes)
+  // Capacity for the h0 face halfedges and room for border halfedges after them (1/16 more):
+  // those of most meshes are then appended without a reallocation that copies the arrays
+  // (capacity that is never written costs address space, not memory).
+  static std::size_t halfedges_with_border_room(std::size_t h0) { return h0 + h0 / 16 + 1024; }
+
+  // The first steps of build() and build_twins(): the outgoing face halfedges listed by
+  // source, the long rings sorted, the face halfedges paired (twin, invalid_index for a border
+  // edge; repeated_directed_edge set).
+  void pair_face_halfedges(std::size_t nv, const std::vector<Index>& tri, bool with_apexes)
   {
+    if(tri.size() / 3 >= std::size_t(invalid_index) / 6)
+      throw std::invalid_argument("the mesh has too many faces (at most (2^32-1)/6 are supported)");
+    n = nv;
+    nf = tri.size() / 3;
+    twin.reserve(halfedges_with_border_room(tri.size()));
     list_face_halfedges_by_source(n, tri, with_apexes, out_offsets, out, out_target, out_apex);
+    sort_long_rings();
+    repeated_directed_edge = !match_twins_by_smaller_end();
+    if(repeated_directed_edge)
+      match_twins_first_come(tri);
   }
 
   // Rings longer than long_ring are also listed sorted by target, so that finding a target

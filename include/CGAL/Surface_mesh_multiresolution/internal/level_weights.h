@@ -53,7 +53,8 @@ public:
     if(!computed())
       return;
     m_xyz.reserve(3 * pyr.number_of_vertices(level));
-    m_builder.reserve(pyr.number_of_vertices(level), 3 * pyr.number_of_faces(level));
+    if(m_scheme != Relaxation_scheme::SECOND_ORDER_DIFFERENCE)   // SOD's rows read the halfedges, not the corner lists
+      m_builder.reserve(pyr.number_of_vertices(level), 3 * pyr.number_of_faces(level));
   }
 
   // whether the level holds its weights (store_weights(), or a file of format 1 or 2)
