@@ -7,7 +7,8 @@
 //
 // Usage: bench_pyramid [mesh files...]   (default: CGAL data meshes)
 //        bench_pyramid --scaling FILE...    (1, 2, 4, ... threads)
-//        bench_pyramid --sizes FILE N       (the mesh and N Loop subdivisions of it)
+//        bench_pyramid --sizes FILE N       (the mesh and N Loop subdivisions of it, as
+//                                            subdivided and in a spatial order)
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/Surface_mesh_multiresolution.h>
@@ -19,6 +20,8 @@
 #include <CGAL/IO/polygon_soup_io.h>
 #include <CGAL/boost/graph/IO/polygon_mesh_io.h>
 #include <CGAL/Subdivision_method_3/subdivision_methods_3.h>
+#include <CGAL/Spatial_sort_traits_adapter_3.h>
+#include <CGAL/spatial_sort.h>
 #include <CGAL/Surface_mesh_simplification/edge_collapse.h>
 #include <CGAL/Surface_mesh_simplification/Policies/Edge_collapse/GarlandHeckbert_plane_policies.h>
 
@@ -191,34 +194,75 @@ Measure meshopt_to(const Mesh& mesh, long target)
   });
 }
 
+// The same mesh with its vertices in CGAL's spatial (Hilbert) order and its faces in the order
+// of their first vertex in it: the memory order of a scanner's grid or of a locality-ordered
+// file. Loop subdivision appends each level's new vertices and faces after the old ones, so
+// neighbours of the subdivided meshes lie far apart in memory.
+Mesh spatially_ordered(const Mesh& mesh)
+{
+  typedef Mesh::Vertex_index Vertex;
+  std::vector<Vertex> order(vertices(mesh).begin(), vertices(mesh).end());
+  typedef CGAL::Spatial_sort_traits_adapter_3<K, Mesh::Property_map<Vertex, K::Point_3> > Traits;
+  CGAL::spatial_sort(order.begin(), order.end(), Traits(mesh.points()));
+  std::vector<Mesh::size_type> rank(mesh.number_of_vertices());
+  Mesh out;
+  out.reserve(mesh.number_of_vertices(), mesh.number_of_edges(), mesh.number_of_faces());
+  for(std::size_t i = 0; i < order.size(); ++i)
+  {
+    rank[order[i]] = Mesh::size_type(i);
+    out.add_vertex(mesh.point(order[i]));
+  }
+  std::vector<std::pair<Mesh::size_type, Mesh::Face_index> > by_rank;
+  for(const Mesh::Face_index f : faces(mesh))
+  {
+    Mesh::size_type first = rank[target(halfedge(f, mesh), mesh)];
+    for(const Vertex v : vertices_around_face(halfedge(f, mesh), mesh)) first = (std::min)(first, rank[v]);
+    by_rank.emplace_back(first, f);
+  }
+  std::stable_sort(by_rank.begin(), by_rank.end(),
+                   [](const auto& a, const auto& b) { return a.first < b.first; });
+  for(const auto& rf : by_rank)
+  {
+    std::vector<Vertex> corners;
+    for(const Vertex v : vertices_around_face(halfedge(rf.second, mesh), mesh)) corners.push_back(Vertex(rank[v]));
+    out.add_face(corners);
+  }
+  return out;
+}
+
 // `bench_pyramid --sizes FILE N`: the mesh and its 1..N Loop subdivisions (4x the vertices
 // each), decomposed to 1 % and simplified by meshopt_simplify to the same count: time per
-// vertex against size
+// vertex against size, for each mesh as subdivided and spatially ordered
 int sizes_mode(const char* file, int subdivisions)
 {
   Mesh mesh;
   if(!read_mesh(file, mesh)) return 1;
   std::printf("| mesh | vertices | SMR decompose (s) | µs per vertex | per vertex / unsubdivided | meshopt_simplify (s) | µs per vertex | per vertex / unsubdivided | decompose / meshopt |\n");
   std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---:|\n");
-  double first_smr = 0, first_mo = 0;
+  double first_smr[2] = {0, 0}, first_mo[2] = {0, 0};
   const std::string name = std::string(file).substr(std::string(file).find_last_of('/') + 1);
   for(int s = 0; s <= subdivisions; ++s)
   {
     if(s > 0)
       CGAL::Subdivision_method_3::Loop_subdivision(mesh, CGAL::parameters::number_of_iterations(1));
-    const long n = long(mesh.number_of_vertices());
-    long target = 0;
-    const Measure dec = timed([&] {
-      const auto p = SMR::decompose(mesh, SMR::parameters::minimum_number_of_vertices(std::size_t(n / 100)));
-      return target = long(p.number_of_vertices(p.number_of_levels()));
-    });
-    const Measure mo = meshopt_to(mesh, target);
-    const double smr_us = 1e6 * dec.seconds / double(n), mo_us = 1e6 * mo.seconds / double(n);
-    if(s == 0) { first_smr = smr_us; first_mo = mo_us; }
-    std::printf("| %s, %d Loop subdivision%s | %ld | %.3f | %.2f | %.2f | %.3f (%ld v) | %.2f | %.2f | %.2f |\n", name.c_str(), s,
-                s == 1 ? "" : "s", n, dec.seconds, smr_us, smr_us / first_smr, mo.seconds, mo.result, mo_us, mo_us / first_mo,
-                dec.seconds / mo.seconds);
-    std::fflush(stdout);
+    for(int ordered = 0; ordered < 2; ++ordered)
+    {
+      const Mesh m = ordered ? spatially_ordered(mesh) : Mesh();
+      const Mesh& input = ordered ? m : mesh;
+      const long n = long(input.number_of_vertices());
+      long target = 0;
+      const Measure dec = timed([&] {
+        const auto p = SMR::decompose(input, SMR::parameters::minimum_number_of_vertices(std::size_t(n / 100)));
+        return target = long(p.number_of_vertices(p.number_of_levels()));
+      });
+      const Measure mo = meshopt_to(input, target);
+      const double smr_us = 1e6 * dec.seconds / double(n), mo_us = 1e6 * mo.seconds / double(n);
+      if(s == 0) { first_smr[ordered] = smr_us; first_mo[ordered] = mo_us; }
+      std::printf("| %s, %d Loop subdivision%s%s | %ld | %.3f | %.2f | %.2f | %.3f (%ld v) | %.2f | %.2f | %.2f |\n", name.c_str(), s,
+                  s == 1 ? "" : "s", ordered ? ", spatially ordered" : "", n, dec.seconds, smr_us, smr_us / first_smr[ordered],
+                  mo.seconds, mo.result, mo_us, mo_us / first_mo[ordered], dec.seconds / mo.seconds);
+      std::fflush(stdout);
+    }
   }
   return 0;
 }

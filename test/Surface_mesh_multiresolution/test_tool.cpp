@@ -14,6 +14,7 @@
 #include <fstream>
 #include <map>
 #include <random>
+#include <set>
 #include <sstream>
 #include <string>
 #include <sys/wait.h>
@@ -306,4 +307,170 @@ TEST_CASE("seeded fuzzing of the PLY reader: every mutated file is read into a v
   INFO(read << " read, " << refused << " refused");
   CHECK(read > 0);
   CHECK(refused > 0);
+}
+
+TEST_CASE("the soup check answers as CGAL's is_polygon_soup_a_polygon_mesh()", "[tool][soup]")
+{
+  typedef std::vector<std::vector<std::size_t> > Polygons;
+  auto agree = [](const Polygons& polygons, std::size_t points) {
+    const bool ours = smr_tool::is_oriented_polygon_mesh(polygons, points);
+    const bool cgal = CGAL::Polygon_mesh_processing::is_polygon_soup_a_polygon_mesh(polygons);
+    CHECK(ours == cgal);
+    return cgal;
+  };
+  SECTION("known answers")
+  {
+    // one triangle; a square as two triangles and as one quad; a closed tetrahedron
+    CHECK(agree({{0, 1, 2}}, 3));
+    CHECK(agree({{0, 1, 2}, {0, 2, 3}}, 4));
+    CHECK(agree({{0, 1, 2, 3}}, 4));
+    CHECK(agree({{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {2, 0, 3}}, 4));
+    // two triangles meeting at a vertex (a bow tie) and two tetrahedra sharing a vertex
+    CHECK_FALSE(agree({{0, 1, 2}, {0, 3, 4}}, 5));
+    CHECK_FALSE(agree({{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {2, 0, 3}, {0, 5, 4}, {0, 4, 6}, {4, 5, 6}, {5, 0, 6}}, 7));
+    // an edge in three triangles; a face reversed; a corner twice; too few corners
+    CHECK_FALSE(agree({{0, 1, 2}, {1, 0, 3}, {0, 1, 4}}, 5));
+    CHECK_FALSE(agree({{0, 1, 2}, {0, 1, 3}, {1, 2, 3}, {2, 0, 3}}, 4));
+    CHECK_FALSE(agree({{0, 1, 0, 2}}, 3));
+    CHECK_FALSE(agree({{0, 1}}, 2));
+    CHECK(agree({}, 0));
+  }
+  SECTION("seeded random damage to a sphere's soup")
+  {
+    const Mesh sphere = smr_test::icosphere<Mesh>(2);
+    Polygons base;
+    for(auto f : faces(sphere))
+    {
+      std::vector<std::size_t> p;
+      for(auto v : vertices_around_face(halfedge(f, sphere), sphere)) p.push_back(v.idx());
+      base.push_back(p);
+    }
+    const std::size_t n = num_vertices(sphere);
+    std::mt19937 rng(2026);
+    std::size_t meshes = 0, not_meshes = 0;
+    for(int trial = 0; trial < 400; ++trial)
+    {
+      Polygons soup = base;
+      const int removals = int(rng() % 16);
+      for(int r = 0; r < removals && soup.size() > 1; ++r) soup.erase(soup.begin() + std::ptrdiff_t(rng() % soup.size()));
+      if(rng() % 4 == 0)
+      {
+        auto& p = soup[rng() % soup.size()];
+        std::reverse(p.begin(), p.end());
+      }
+      if(rng() % 4 == 0)   // two vertices identified: pinches, non-manifold edges, repeated corners
+      {
+        const std::size_t a = rng() % n, b = rng() % n;
+        for(auto& p : soup) for(auto& v : p) if(v == b) v = a;
+      }
+      if(rng() % 8 == 0) soup.push_back(soup[rng() % soup.size()]);
+      if(rng() % 8 == 0 && soup.size() > 1)   // two triangles sharing an edge merged into a quad
+      {
+        const std::vector<std::size_t> t = soup.back();
+        for(std::size_t i = 0; i + 1 < soup.size(); ++i)
+        {
+          const auto& u = soup[i];
+          if(u.size() != 3 || t.size() != 3) continue;
+          for(int e = 0; e < 3; ++e)
+          {
+            const std::size_t x = t[std::size_t(e)], y = t[std::size_t((e + 1) % 3)], z = t[std::size_t((e + 2) % 3)];
+            for(int g = 0; g < 3; ++g)
+              if(u[std::size_t(g)] == y && u[std::size_t((g + 1) % 3)] == x)
+              {
+                soup[i] = {x, u[std::size_t((g + 2) % 3)], y, z};
+                soup.pop_back();
+                goto merged;
+              }
+          }
+        }
+      merged:;
+      }
+      std::shuffle(soup.begin(), soup.end(), rng);
+      (agree(soup, n) ? meshes : not_meshes) += 1;
+    }
+    INFO(meshes << " polygon meshes, " << not_meshes << " not");
+    CHECK(meshes > 50);
+    CHECK(not_meshes > 50);
+  }
+}
+
+TEST_CASE("--spatial-order keeps every vertex with its values and every face, in a local order", "[tool][order]")
+{
+  const Own_directory here("spatial_order");
+  // a coloured sphere whose vertices and faces are shuffled: neighbours far apart in the file
+  smr_tool::Scan s;
+  {
+    const Mesh sphere = smr_test::icosphere<Mesh>(4);
+    const std::size_t n = num_vertices(sphere);
+    std::vector<std::size_t> perm(n);
+    for(std::size_t i = 0; i < n; ++i) perm[i] = i;
+    std::mt19937 rng(7);
+    std::shuffle(perm.begin(), perm.end(), rng);
+    std::vector<Mesh::Vertex_index> made(n);
+    std::vector<std::size_t> inverse(n);
+    for(std::size_t i = 0; i < n; ++i) inverse[perm[i]] = i;
+    for(std::size_t i = 0; i < n; ++i) made[i] = s.mesh.add_vertex(sphere.point(Mesh::Vertex_index(Mesh::size_type(inverse[i]))));
+    std::vector<Mesh::Face_index> fs(faces(sphere).begin(), faces(sphere).end());
+    std::shuffle(fs.begin(), fs.end(), rng);
+    for(auto f : fs)
+    {
+      std::vector<Mesh::Vertex_index> t;
+      for(auto v : vertices_around_face(halfedge(f, sphere), sphere)) t.push_back(made[perm[v.idx()]]);
+      s.mesh.add_face(t);
+    }
+  }
+  s.channels = {smr_tool::Channel{"scalar", {"quality"}, {"double"}}};
+  s.maps = smr_tool::add_channel_maps(s.mesh, 1);
+  for(auto v : vertices(s.mesh)) s.maps[0][v] = {{double(v.idx()) * 0.5, 0., 0., 0.}};
+  std::string dropped;
+  smr_tool::write_scan("shuffled.ply", s.mesh, s.channels, s.maps, true, dropped);
+  REQUIRE(smr("relax shuffled.ply -o ordered.ply --iterations 0 --spatial-order").status == 0);
+  REQUIRE(smr("relax shuffled.ply -o as_read.ply --iterations 0").status == 0);
+  const smr_tool::Scan in = smr_tool::read_scan("as_read.ply"), out = smr_tool::read_scan("ordered.ply");
+  REQUIRE(num_vertices(out.mesh) == num_vertices(in.mesh));
+  REQUIRE(num_faces(out.mesh) == num_faces(in.mesh));
+  // every vertex at its position with its value; every face with its corners in their cyclic order
+  std::map<Point, std::array<double, 4> > value_at;
+  for(auto v : vertices(in.mesh)) value_at[in.mesh.point(v)] = in.maps[0][v];
+  for(auto v : vertices(out.mesh))
+  {
+    const auto it = value_at.find(out.mesh.point(v));
+    REQUIRE(it != value_at.end());
+    CHECK(it->second == out.maps[0][v]);
+  }
+  auto face_set = [](const Mesh& m) {
+    std::set<std::array<Point, 3> > set;
+    for(auto f : faces(m))
+    {
+      std::array<Point, 3> t;
+      int i = 0;
+      for(auto v : vertices_around_face(halfedge(f, m), m)) t[std::size_t(i++)] = m.point(v);
+      std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
+      set.insert(t);
+    }
+    return set;
+  };
+  CHECK(face_set(out.mesh) == face_set(in.mesh));
+  // the faces come in the order of their first vertex, and neighbours are close in memory:
+  // the mean index span of a face is far smaller than in the shuffled file
+  auto mean_span = [](const Mesh& m, bool& ordered_faces) {
+    double sum = 0;
+    std::size_t previous_first = 0;
+    ordered_faces = true;
+    for(auto f : faces(m))
+    {
+      std::size_t lo = num_vertices(m), hi = 0;
+      for(auto v : vertices_around_face(halfedge(f, m), m)) { lo = (std::min)(lo, std::size_t(v.idx())); hi = (std::max)(hi, std::size_t(v.idx())); }
+      ordered_faces = ordered_faces && lo >= previous_first;
+      previous_first = lo;
+      sum += double(hi - lo);
+    }
+    return sum / double(num_faces(m));
+  };
+  bool in_order = false, out_order = false;
+  const double span_in = mean_span(in.mesh, in_order), span_out = mean_span(out.mesh, out_order);
+  INFO("mean face span: " << span_in << " as read, " << span_out << " ordered");
+  CHECK(out_order);
+  CHECK_FALSE(in_order);
+  CHECK(span_out * 10 < span_in);
 }

@@ -575,7 +575,6 @@ private:
     return dot > 0. ? max_cotangent : (dot < 0. ? -max_cotangent : 0.);
   }
 
-  // m_cotangent[h] = cotangent of the angle opposite the face halfedge h in its face
   // the (clamped) cotangents of the angles of the triangle t[0] t[1] t[2] opposite its
   // halfedges t[k] -> t[k+1], k = 0, 1, 2
   static void face_cotangents(const Index* t, const double* xyz, double cot[3])
