@@ -21,7 +21,7 @@
 #include <CGAL/boost/graph/IO/polygon_mesh_io.h>
 #include <CGAL/Subdivision_method_3/subdivision_methods_3.h>
 #include <CGAL/Spatial_sort_traits_adapter_3.h>
-#include <CGAL/spatial_sort.h>
+#include <CGAL/hilbert_sort.h>
 #include <CGAL/Surface_mesh_simplification/edge_collapse.h>
 #include <CGAL/Surface_mesh_simplification/Policies/Edge_collapse/GarlandHeckbert_plane_policies.h>
 
@@ -194,8 +194,8 @@ Measure meshopt_to(const Mesh& mesh, long target)
   });
 }
 
-// The same mesh with its vertices in CGAL's spatial (Hilbert) order and its faces in the order
-// of their first vertex in it: the memory order of a scanner's grid or of a locality-ordered
+// The same mesh with its vertices in CGAL's Hilbert order and its faces in the order of their
+// first vertex in it (as `smr --spatial-order` orders a file): the memory order of a scanner's grid or of a locality-ordered
 // file. Loop subdivision appends each level's new vertices and faces after the old ones, so
 // neighbours of the subdivided meshes lie far apart in memory.
 Mesh spatially_ordered(const Mesh& mesh)
@@ -203,7 +203,7 @@ Mesh spatially_ordered(const Mesh& mesh)
   typedef Mesh::Vertex_index Vertex;
   std::vector<Vertex> order(vertices(mesh).begin(), vertices(mesh).end());
   typedef CGAL::Spatial_sort_traits_adapter_3<K, Mesh::Property_map<Vertex, K::Point_3> > Traits;
-  CGAL::spatial_sort(order.begin(), order.end(), Traits(mesh.points()));
+  CGAL::hilbert_sort(order.begin(), order.end(), Traits(mesh.points()));   // median policy: deterministic
   std::vector<Mesh::size_type> rank(mesh.number_of_vertices());
   Mesh out;
   out.reserve(mesh.number_of_vertices(), mesh.number_of_edges(), mesh.number_of_faces());

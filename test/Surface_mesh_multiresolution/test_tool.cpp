@@ -394,7 +394,7 @@ TEST_CASE("the soup check answers as CGAL's is_polygon_soup_a_polygon_mesh()", "
   }
 }
 
-TEST_CASE("--spatial-order keeps every vertex with its values and every face, in a local order", "[tool][order]")
+TEST_CASE("smr --spatial-order keeps every vertex with its values and every face, in a local order", "[tool][order]")
 {
   const Own_directory here("spatial_order");
   // a coloured sphere whose vertices and faces are shuffled: neighbours far apart in the file

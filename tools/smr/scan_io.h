@@ -505,36 +505,52 @@ inline void repair(Soup& s)
   // 2. polygons: merged indices, consecutive repeats out; fewer than 3 corners, a corner twice
   //    or the same corners as an earlier polygon: taken out
   std::size_t degenerate = 0, duplicates = 0;
-  std::vector<std::vector<std::size_t> > cleaned;
-  std::vector<std::pair<std::array<std::size_t, 3>, std::size_t> > triangles;   // sorted corners, position in `cleaned`
+  // each polygon is rewritten in place (no copy per polygon: 6 million triangles are common)
+  std::vector<std::pair<std::array<std::size_t, 3>, std::size_t> > triangles;   // sorted corners, polygon
   std::map<std::vector<std::size_t>, std::size_t> larger;                        // the rare polygons: sorted corners
-  std::vector<char> duplicate;
-  for(auto& p : s.polygons)
+  std::vector<char> out(s.polygons.size(), 0);                                   // degenerate or a duplicate
+  triangles.reserve(s.polygons.size());
+  for(std::size_t i = 0; i < s.polygons.size(); ++i)
   {
-    std::vector<std::size_t> q;
-    for(std::size_t v : p)
-      if(q.empty() || rep[v] != q.back()) q.push_back(rep[v]);
-    while(q.size() > 1 && q.front() == q.back()) q.pop_back();
-    std::vector<std::size_t> sorted = q;
+    std::vector<std::size_t>& p = s.polygons[i];
+    std::size_t m = 0;
+    for(std::size_t v : p)   // p[m] is written after p[j] for every j >= m was read
+      if(m == 0 || rep[v] != p[m - 1]) p[m++] = rep[v];
+    p.resize(m);
+    while(p.size() > 1 && p.front() == p.back()) p.pop_back();
+    if(p.size() == 3)
+    {
+      std::array<std::size_t, 3> sorted = {{p[0], p[1], p[2]}};
+      std::sort(sorted.begin(), sorted.end());
+      if(sorted[0] == sorted[1] || sorted[1] == sorted[2]) { ++degenerate; out[i] = 1; continue; }
+      triangles.push_back({sorted, i});
+      continue;
+    }
+    std::vector<std::size_t> sorted = p;
     std::sort(sorted.begin(), sorted.end());
-    if(q.size() < 3 || std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end()) { ++degenerate; continue; }
-    duplicate.push_back(0);
-    if(q.size() == 3)
-      triangles.push_back({{{sorted[0], sorted[1], sorted[2]}}, cleaned.size()});
-    else if(!larger.emplace(sorted, cleaned.size()).second)
-      duplicate.back() = 1;
-    cleaned.push_back(std::move(q));
+    if(p.size() < 3 || std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end()) { ++degenerate; out[i] = 1; continue; }
+    if(!larger.emplace(sorted, i).second)
+    {
+      ++duplicates;
+      out[i] = 1;
+    }
   }
   std::sort(triangles.begin(), triangles.end());   // equal corners together, the first one first
   for(std::size_t i = 1; i < triangles.size(); ++i)
-    if(triangles[i].first == triangles[i - 1].first) duplicate[triangles[i].second] = 1;
-  std::vector<std::vector<std::size_t> > kept;
-  for(std::size_t i = 0; i < cleaned.size(); ++i)
-  {
-    if(duplicate[i]) { ++duplicates; continue; }
-    kept.push_back(std::move(cleaned[i]));
-  }
-  s.polygons.swap(kept);
+    if(triangles[i].first == triangles[i - 1].first)
+    {
+      ++duplicates;
+      out[triangles[i].second] = 1;
+    }
+  std::vector<std::pair<std::array<std::size_t, 3>, std::size_t> >().swap(triangles);
+  std::size_t kept = 0;
+  for(std::size_t i = 0; i < s.polygons.size(); ++i)
+    if(!out[i])
+    {
+      if(kept != i) s.polygons[kept] = std::move(s.polygons[i]);
+      ++kept;
+    }
+  s.polygons.resize(kept);
   // 3. unreferenced points out
   std::vector<std::size_t> new_index(n, std::size_t(-1));
   std::size_t m = 0;
