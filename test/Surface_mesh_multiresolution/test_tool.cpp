@@ -335,6 +335,24 @@ TEST_CASE("the soup check answers as CGAL's is_polygon_soup_a_polygon_mesh()", "
     CHECK_FALSE(agree({{0, 1}}, 2));
     CHECK(agree({}, 0));
   }
+  SECTION("a vertex of high degree: a closed fan, a half-disk, two half-disks")
+  {
+    // a double cone: apexes 0 and 1, a ring of m vertices 2 .. m+1; every apex has degree m
+    const std::size_t m = 1000;
+    Polygons cone;
+    for(std::size_t i = 0; i < m; ++i)
+    {
+      const std::size_t a = 2 + i, b = 2 + (i + 1) % m;
+      cone.push_back({0, a, b});
+      cone.push_back({1, b, a});
+    }
+    CHECK(agree(cone, m + 2));                 // closed: every fan a disk
+    Polygons open = cone;
+    open.erase(open.begin());                  // one triangle at apex 0 out: a half-disk there
+    CHECK(agree(open, m + 2));
+    open.erase(open.begin() + std::ptrdiff_t(m - 1));   // {0, 502, 503}, far from the first: two half-disks at 0
+    CHECK_FALSE(agree(open, m + 2));
+  }
   SECTION("seeded random damage to a sphere's soup")
   {
     const Mesh sphere = smr_test::icosphere<Mesh>(2);
