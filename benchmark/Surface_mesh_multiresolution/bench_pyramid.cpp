@@ -20,8 +20,7 @@
 #include <CGAL/IO/polygon_soup_io.h>
 #include <CGAL/boost/graph/IO/polygon_mesh_io.h>
 #include <CGAL/Subdivision_method_3/subdivision_methods_3.h>
-#include <CGAL/Spatial_sort_traits_adapter_3.h>
-#include <CGAL/hilbert_sort.h>
+#include <CGAL/Polygon_mesh_processing/polygon_mesh_to_polygon_soup.h>
 #include <CGAL/Surface_mesh_simplification/edge_collapse.h>
 #include <CGAL/Surface_mesh_simplification/Policies/Edge_collapse/GarlandHeckbert_plane_policies.h>
 
@@ -30,6 +29,7 @@
 #include <OpenMesh/Tools/Decimater/ModIndependentSetsT.hh>
 #include <OpenMesh/Tools/Decimater/ModQuadricT.hh>
 #include <meshoptimizer.h>
+#include "scan_io.h"   // smr_tool::order_spatially(), the tool's --spatial-order
 #ifdef CGAL_LINKED_WITH_TBB
 #include <tbb/global_control.h>
 #include <tbb/info.h>
@@ -194,39 +194,18 @@ Measure meshopt_to(const Mesh& mesh, long target)
   });
 }
 
-// The same mesh with its vertices in CGAL's Hilbert order and its faces in the order of their
-// first vertex in it (as `smr --spatial-order` orders a file): the memory order of a scanner's grid or of a locality-ordered
-// file. Loop subdivision appends each level's new vertices and faces after the old ones, so
-// neighbours of the subdivided meshes lie far apart in memory.
+// The same mesh in the order `smr --spatial-order` gives a file (smr_tool::order_spatially():
+// vertices in CGAL's Hilbert order, faces in the order of their first vertex): the memory order
+// of a scanner's grid or of a locality-ordered file. Loop subdivision appends each level's new
+// vertices and faces after the old ones, so neighbours of the subdivided meshes lie far apart
+// in memory.
 Mesh spatially_ordered(const Mesh& mesh)
 {
-  typedef Mesh::Vertex_index Vertex;
-  std::vector<Vertex> order(vertices(mesh).begin(), vertices(mesh).end());
-  typedef CGAL::Spatial_sort_traits_adapter_3<K, Mesh::Property_map<Vertex, K::Point_3> > Traits;
-  CGAL::hilbert_sort(order.begin(), order.end(), Traits(mesh.points()));   // median policy: deterministic
-  std::vector<Mesh::size_type> rank(mesh.number_of_vertices());
+  smr_tool::Soup soup;
+  CGAL::Polygon_mesh_processing::polygon_mesh_to_polygon_soup(mesh, soup.points, soup.polygons);
+  smr_tool::order_spatially(soup);
   Mesh out;
-  out.reserve(mesh.number_of_vertices(), mesh.number_of_edges(), mesh.number_of_faces());
-  for(std::size_t i = 0; i < order.size(); ++i)
-  {
-    rank[order[i]] = Mesh::size_type(i);
-    out.add_vertex(mesh.point(order[i]));
-  }
-  std::vector<std::pair<Mesh::size_type, Mesh::Face_index> > by_rank;
-  for(const Mesh::Face_index f : faces(mesh))
-  {
-    Mesh::size_type first = rank[target(halfedge(f, mesh), mesh)];
-    for(const Vertex v : vertices_around_face(halfedge(f, mesh), mesh)) first = (std::min)(first, rank[v]);
-    by_rank.emplace_back(first, f);
-  }
-  std::stable_sort(by_rank.begin(), by_rank.end(),
-                   [](const auto& a, const auto& b) { return a.first < b.first; });
-  for(const auto& rf : by_rank)
-  {
-    std::vector<Vertex> corners;
-    for(const Vertex v : vertices_around_face(halfedge(rf.second, mesh), mesh)) corners.push_back(Vertex(rank[v]));
-    out.add_face(corners);
-  }
+  CGAL::Polygon_mesh_processing::polygon_soup_to_polygon_mesh(soup.points, soup.polygons, out);
   return out;
 }
 
