@@ -492,3 +492,170 @@ TEST_CASE("smr --spatial-order keeps every vertex with its values and every face
   CHECK_FALSE(in_order);
   CHECK(span_out * 10 < span_in);
 }
+
+namespace {
+
+// The numbers of `text` read one type at a time, until the first that fails: by CGAL 5.5's
+// ASCII PLY reading (PLY_read_typed_number<T>::read() on a stream) and by smr_tool's.
+template <typename T>
+void check_ascii_numbers_as_cgal(const std::string& text)
+{
+  using smr_tool::ply::Number_type;
+  std::vector<double> cgal, ours;
+  {
+    std::istringstream is(text);
+    const CGAL::IO::internal::PLY_read_typed_number<T> reader("p", 0);
+    for(;;)
+    {
+      const T t = reader.template read<T>(is);
+      if(!is) break;
+      cgal.push_back(double(t));
+    }
+  }
+  {
+    std::istringstream is(text);
+    smr_tool::ply::Ascii_numbers numbers(is);
+    double x = 0;
+    while(numbers.read(smr_tool::ply::number_type_of<T>(), x)) ours.push_back(x);
+  }
+  INFO("type " << int(smr_tool::ply::number_type_of<T>()) << ", text '" << (text.size() < 200 ? text : text.substr(0, 200) + "...") << "'");
+  REQUIRE(ours.size() == cgal.size());
+  for(std::size_t i = 0; i < ours.size(); ++i)
+  {
+    INFO("number " << i);
+    REQUIRE(std::memcmp(&ours[i], &cgal[i], sizeof(double)) == 0);   // the same bits (signed zeros, infinities)
+  }
+}
+
+void check_ascii_numbers_as_cgal_every_type(const std::string& text)
+{
+  check_ascii_numbers_as_cgal<std::int8_t>(text);
+  check_ascii_numbers_as_cgal<std::uint8_t>(text);
+  check_ascii_numbers_as_cgal<std::int16_t>(text);
+  check_ascii_numbers_as_cgal<std::uint16_t>(text);
+  check_ascii_numbers_as_cgal<std::int32_t>(text);
+  check_ascii_numbers_as_cgal<std::uint32_t>(text);
+  check_ascii_numbers_as_cgal<float>(text);
+  check_ascii_numbers_as_cgal<double>(text);
+}
+
+} // namespace
+
+TEST_CASE("ASCII PLY numbers are read as CGAL's PLY reader reads them", "[tool][input]")
+{
+  SECTION("limits, signs, and texts that are no numbers")
+  {
+    const std::vector<std::string> texts = {
+      "0 1 -1 +1 127 128 -128 -129 255 256 300 -300 32767 32768 -32768 -32769 65535 65536 70000 -70000",
+      "2147483647 2147483648 -2147483648 -2147483649 4294967295 4294967296 -4294967295",
+      "9223372036854775807 9223372036854775808 -9223372036854775808 -9223372036854775809 99999999999999999999999",
+      "1.5 -2.25 .5 5. 1e3 1E-3 1e+3 -0 -0.0 +0 0.1 3.4028234e38 3.4028236e38 1e39 -1e39 1e-45 1e-46 1.4e-45",
+      "1e308 1.7976931348623157e308 1.8e308 1e309 -1e309 2.2250738585072014e-308 4.9e-324 2e-324 1e-400",
+      "+5 ++5 +-5 -+5 --5", "-", "+", ".", "-.", "e5", "1e", "1e+", "1.5.3 7", "1.0-2.0 3", "0x10 7", "007 08",
+      "1,5", "12abc", "  \t\n\r\v\f 42 \n", "", "   ", "5-", "5+3", "3 e 4", "0.000000000000000000000000000001",
+      "0.1000000000000000055511151231257827021181583404541015625", "123456789012345678901234567890.5",
+      std::string("4\0" "2", 3), "\xff 1", "1\xff", "nan inf infinity",
+    };
+    for(const std::string& t : texts) check_ascii_numbers_as_cgal_every_type(t);
+  }
+  SECTION("seeded random texts of number characters")
+  {
+    std::mt19937 random(20261203);
+    const char alphabet[] = "0123456789+-.eE \n\txX";
+    for(int trial = 0; trial < 20000; ++trial)
+    {
+      std::string t;
+      const std::size_t length = 1 + random() % 40;
+      for(std::size_t i = 0; i < length; ++i) t += alphabet[random() % (sizeof alphabet - 1)];
+      check_ascii_numbers_as_cgal_every_type(t);
+    }
+  }
+  SECTION("numbers across the reading blocks, and one number longer than a block")
+  {
+    // 300,000 numbers (about 2.6 MB: across the 1 MiB blocks), then a 3 MB number
+    std::mt19937 random(7);
+    std::string t;
+    for(int i = 0; i < 300000; ++i) t += std::to_string(int(random() % 200000) - 100000) + (i % 7 ? " " : ".5\n");
+    t += std::string(3000000, '0') + "17.25 9";
+    check_ascii_numbers_as_cgal<float>(t);
+    check_ascii_numbers_as_cgal<std::int32_t>(t);
+  }
+}
+
+TEST_CASE("an ASCII PLY and its binary encodings read to the same soup, every number type", "[tool][input]")
+{
+  const Own_directory here("ascii_binary");
+  // vertices with properties of every PLY type (positions as doubles), faces with int8 to
+  // uint32 indices behind uchar to int counts
+  const std::vector<std::pair<std::string, std::string> > props = {
+    {"char", "c"}, {"uchar", "u"}, {"short", "s"}, {"ushort", "us"}, {"int", "i"}, {"uint", "ui"}, {"float", "f"}};
+  // the tool keeps at most 4 channels of 4 components: the scalars fill two channels
+  std::string head = "ply\nformat FORMAT 1.0\nelement vertex 5\nproperty double x\nproperty double y\nproperty double z\n";
+  for(const auto& p : props) head += "property " + p.first + " q_" + p.second + "\n";
+  head += "element face 4\nproperty list uchar int vertex_indices\nelement extra 2\nproperty list short uint numbers\n"
+          "property float w\nend_header\n";
+  const double xyz[5][3] = {{0, 0, 0}, {1, 0, 0.1}, {1, 1, -0.2}, {0, 1, 1e-300}, {0.5, 0.5, 1.25}};
+  const long long scalar[5][7] = {{-128, 0, -32768, 0, -2147483647, 0, 3}, {127, 255, 32767, 65535, 2147483647, 4294967295LL, -2},
+                                  {-1, 1, -1, 1, -1, 1, 1}, {5, 6, 7, 8, 9, 10, 11}, {0, 200, 300, 40000, 100000, 3000000000LL, 0}};
+  const int face[4][3] = {{0, 1, 4}, {1, 2, 4}, {2, 3, 4}, {3, 0, 4}};
+  std::ostringstream ascii;
+  ascii.precision(17);
+  for(int v = 0; v < 5; ++v)
+  {
+    ascii << xyz[v][0] << ' ' << xyz[v][1] << ' ' << xyz[v][2];
+    for(int k = 0; k < 6; ++k) ascii << ' ' << scalar[v][k];
+    ascii << ' ' << double(scalar[v][6]) + 0.5;
+    ascii << '\n';
+  }
+  for(const auto& f : face) ascii << "3 " << f[0] << ' ' << f[1] << ' ' << f[2] << '\n';
+  ascii << "2 4000000000 7 0.25\n0 -1.5\n";
+  std::string binary;
+  auto put = [&](const auto value) {
+    const char* b = reinterpret_cast<const char*>(&value);
+    binary.append(b, sizeof value);
+  };
+  for(int v = 0; v < 5; ++v)
+  {
+    for(int d = 0; d < 3; ++d) put(xyz[v][d]);
+    put(std::int8_t(scalar[v][0])); put(std::uint8_t(scalar[v][1])); put(std::int16_t(scalar[v][2]));
+    put(std::uint16_t(scalar[v][3])); put(std::int32_t(scalar[v][4])); put(std::uint32_t(scalar[v][5]));
+    put(float(double(scalar[v][6]) + 0.5));
+  }
+  for(const auto& f : face) { put(std::uint8_t(3)); for(int c : f) put(std::int32_t(c)); }
+  put(std::int16_t(2)); put(std::uint32_t(4000000000u)); put(std::uint32_t(7)); put(0.25f);
+  put(std::int16_t(0)); put(-1.5f);
+  auto with_format = [&](const std::string& format) {
+    std::string h = head;
+    h.replace(h.find("FORMAT"), 6, format);
+    return h;
+  };
+  write_text("a.ply", with_format("ascii") + ascii.str());
+  write_text("b.ply", with_format("binary_little_endian") + binary);
+  const smr_tool::Scan a = smr_tool::read_scan("a.ply"), b = smr_tool::read_scan("b.ply");
+  REQUIRE(num_vertices(a.mesh) == 5);
+  REQUIRE(num_faces(a.mesh) == 4);
+  REQUIRE(num_vertices(b.mesh) == 5);
+  REQUIRE(a.channels.size() == b.channels.size());
+  REQUIRE(a.channels.size() == 2);
+  CHECK(a.double_positions);
+  for(auto v : vertices(a.mesh))
+  {
+    CHECK(a.mesh.point(v) == b.mesh.point(v));
+    CHECK(a.mesh.point(v) == Point(xyz[v.idx()][0], xyz[v.idx()][1], xyz[v.idx()][2]));
+    for(std::size_t c = 0; c < a.maps.size(); ++c) CHECK(a.maps[c][v] == b.maps[c][v]);
+    // the values as written: 4 scalars in the first channel, 3 in the second
+    for(int k = 0; k < 7; ++k)
+      CHECK(a.maps[std::size_t(k / 4)][v][std::size_t(k % 4)] == double(scalar[v.idx()][k]) + (k == 6 ? 0.5 : 0.));
+  }
+  for(auto f : faces(a.mesh))
+  {
+    std::vector<std::size_t> ca, cb;
+    for(auto v : vertices_around_face(halfedge(f, a.mesh), a.mesh)) ca.push_back(v.idx());
+    for(auto v : vertices_around_face(halfedge(f, b.mesh), b.mesh)) cb.push_back(v.idx());
+    CHECK(ca == cb);
+    CHECK(ca == std::vector<std::size_t>{std::size_t(face[f.idx()][0]), std::size_t(face[f.idx()][1]), std::size_t(face[f.idx()][2])});
+  }
+  // a truncated ASCII file is refused as the binary one is
+  write_text("cut.ply", with_format("ascii") + ascii.str().substr(0, 40));
+  CHECK_THROWS_WITH(smr_tool::read_scan("cut.ply"), Catch::Contains("truncated or unreadable"));
+}

@@ -26,13 +26,19 @@
 #include <CGAL/Spatial_sort_traits_adapter_3.h>
 #include <CGAL/hilbert_sort.h>
 #include <CGAL/property_map.h>
+#ifdef CGAL_LINKED_WITH_TBB
+#include <tbb/parallel_sort.h>
+#endif
 
 #include <algorithm>
 #include <array>
 #include <cctype>
+#include <charconv>
+#include <cstring>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <functional>
 #include <limits>
@@ -40,6 +46,8 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <system_error>
+#include <type_traits>
 #include <vector>
 
 namespace smr_tool {
@@ -96,18 +104,52 @@ using CGAL::IO::internal::PLY_read_number;
 using CGAL::IO::internal::PLY_read_typed_number;
 using CGAL::IO::internal::PLY_read_typed_list_with_typed_size;
 
-// How one property of an element is read, resolved once per element (CGAL's header parser
-// makes the typed property objects; their read<T>() decodes ASCII, little- and big-endian).
-// Why not their get(): a list's get() resizes its buffer to the count it reads, so a crafted
-// count (2^31 in a 100-byte file) would allocate gigabytes before the read fails; here a list
-// grows entry by entry and stops at the end of the data. Dynamic casts per item also cost.
+// The PLY number types, as CGAL's header parser makes them.
+enum class Number_type { int8, uint8, int16, uint16, int32, uint32, float32, float64 };
+
+// A list: its count, then as many integer entries; number(is_count, x) reads one number (false:
+// unreadable or past the data). Why entry by entry: CGAL's list get() resizes its buffer to the
+// count it reads, so a crafted count (2^31 in a 100-byte file) would allocate gigabytes before
+// the read fails; here a list grows entry by entry and stops at the end of the data.
+template <typename ReadNumber>
+void read_list(const ReadNumber& number, std::vector<long long>& v)
+{
+  double count = 0;
+  const bool counted = number(true, count);
+  v.clear();
+  if(!counted || !(count >= 0))
+    throw std::runtime_error("a list with an unreadable or negative count");
+  for(double i = 0; i < count; ++i)
+  {
+    double x = 0;
+    if(!number(false, x))
+      throw std::runtime_error("a list of " + std::to_string(static_cast<long long>(count)) + " entries, more than the file holds");
+    if(!(x == std::floor(x) && std::abs(x) < 4.5e15)) throw std::runtime_error("a list with a non-integer entry");
+    v.push_back(static_cast<long long>(x));
+  }
+}
+
+// How one property of an element is read, resolved once per element: its types, and for binary
+// files the reading by CGAL's typed property objects (their read<T>() decodes little- and
+// big-endian numbers). Why not their get(): see read_list(); dynamic casts per item also cost.
 struct Property_reader
 {
   bool is_list = false;
   std::string type;                                               // the PLY type of a scalar
+  Number_type scalar = Number_type::float32, count = Number_type::uint8, item = Number_type::int32;
   std::function<double(std::istream&)> number;
   std::function<void(std::istream&, std::vector<long long>&)> list;   // throws past the data
 };
+
+template <typename T> constexpr Number_type number_type_of();
+template <> constexpr Number_type number_type_of<std::int8_t>() { return Number_type::int8; }
+template <> constexpr Number_type number_type_of<std::uint8_t>() { return Number_type::uint8; }
+template <> constexpr Number_type number_type_of<std::int16_t>() { return Number_type::int16; }
+template <> constexpr Number_type number_type_of<std::uint16_t>() { return Number_type::uint16; }
+template <> constexpr Number_type number_type_of<std::int32_t>() { return Number_type::int32; }
+template <> constexpr Number_type number_type_of<std::uint32_t>() { return Number_type::uint32; }
+template <> constexpr Number_type number_type_of<float>() { return Number_type::float32; }
+template <> constexpr Number_type number_type_of<double>() { return Number_type::float64; }
 
 template <typename T>
 bool scalar_as(const PLY_read_number* p, const char* name, Property_reader& r)
@@ -115,6 +157,7 @@ bool scalar_as(const PLY_read_number* p, const char* name, Property_reader& r)
   auto q = dynamic_cast<const PLY_read_typed_number<T>*>(p);
   if(!q) return false;
   r.type = name;
+  r.scalar = number_type_of<T>();
   r.number = [q](std::istream& is) { return double(q->template read<T>(is)); };
   return true;
 }
@@ -125,18 +168,13 @@ bool list_as(const PLY_read_number* p, Property_reader& r)
   auto q = dynamic_cast<const PLY_read_typed_list_with_typed_size<S, I>*>(p);
   if(!q) return false;
   r.is_list = true;
+  r.count = number_type_of<S>();
+  r.item = number_type_of<I>();
   r.list = [q](std::istream& is, std::vector<long long>& v) {
-    const double count = double(q->template read<S>(is));
-    v.clear();
-    if(!is || !(count >= 0))
-      throw std::runtime_error("a list with an unreadable or negative count");
-    for(double i = 0; i < count; ++i)
-    {
-      const double x = double(q->template read<I>(is));
-      if(!is) throw std::runtime_error("a list of " + std::to_string(static_cast<long long>(count)) + " entries, more than the file holds");
-      if(!(x == std::floor(x) && std::abs(x) < 4.5e15)) throw std::runtime_error("a list with a non-integer entry");
-      v.push_back(static_cast<long long>(x));
-    }
+    read_list([&](bool is_count, double& x) {
+      x = is_count ? double(q->template read<S>(is)) : double(q->template read<I>(is));
+      return bool(is);
+    }, v);
   };
   return true;
 }
@@ -161,6 +199,195 @@ inline Property_reader reader_of(const PLY_read_number* p)
     return r;
   throw std::runtime_error("property '" + p->name() + "' has a type the reader does not know");
 }
+
+// The numbers of an ASCII PLY file's data, read as CGAL 5.5's PLY reader reads them through
+// std::istream (PLY_read_typed_number<T>::read(), that is libstdc++'s operator>> in the C
+// locale): the same text accepted, the same values, the same characters consumed. Integers:
+// blanks skipped, an optional sign, decimal digits; char, short and int through a long,
+// range-checked, then narrowed; unsigned types modulo 2^bits after a '-'; uchar through an
+// unsigned short. Reals: see real(). Why by hand: the stream reads each number through a
+// sentry, a std::string and strtof (0.7 s of the 1.8 s the tool took to read the Stanford
+// dragon's 33 MB ASCII PLY); here std::from_chars (the same correctly rounded values) parses
+// the text in place. The file is read in blocks of 1 MiB (a longer number grows the block, as
+// the stream's std::string would grow).
+class Ascii_numbers
+{
+public:
+  explicit Ascii_numbers(std::istream& is) : m_is(is), m_data(std::size_t(1) << 20) {}
+
+  // one number of type t into x; false if there is none (the end of the file, text that is no
+  // number of that type, a value out of its range)
+  bool read(Number_type t, double& x)
+  {
+    switch(t)
+    {
+      case Number_type::int8: return narrowed<long, short, signed char>(x);
+      case Number_type::uint8: return narrowed<unsigned short, unsigned short, unsigned char>(x);
+      case Number_type::int16: return narrowed<long, short, short>(x);
+      case Number_type::uint16: return narrowed<unsigned short, unsigned short, unsigned short>(x);
+      case Number_type::int32: return narrowed<long, int, int>(x);
+      case Number_type::uint32: return narrowed<unsigned int, unsigned int, unsigned int>(x);
+      case Number_type::float32: return real<float>(x);
+      default: return real<double>(x);
+    }
+  }
+
+private:
+  // the character at m_pos + i (reading more of the file when needed), or -1 past its end
+  int peek(std::size_t i)
+  {
+    while(m_pos + i >= m_end)
+      if(!more())
+        return -1;
+    return static_cast<unsigned char>(m_data[m_pos + i]);
+  }
+
+  // moves what is left to the front and reads more; false when the file has nothing more
+  bool more()
+  {
+    if(m_at_end)
+      return false;
+    if(m_pos > 0)
+    {
+      std::memmove(m_data.data(), m_data.data() + m_pos, m_end - m_pos);
+      m_end -= m_pos;
+      m_pos = 0;
+    }
+    if(m_end == m_data.size())
+      m_data.resize(2 * m_data.size());     // one number as long as the block
+    m_is.read(m_data.data() + m_end, static_cast<std::streamsize>(m_data.size() - m_end));
+    const std::size_t got = static_cast<std::size_t>(m_is.gcount());
+    m_end += got;
+    m_at_end = got == 0;
+    return got > 0;
+  }
+
+  // the blanks of the C locale (std::isspace)
+  static bool blank(int c) { return c == ' ' || (c >= '\t' && c <= '\r'); }
+
+  bool skip_blanks()
+  {
+    for(int c = peek(0); c >= 0; c = peek(0))
+    {
+      if(!blank(c))
+        return true;
+      ++m_pos;
+    }
+    return false;
+  }
+
+  // operator>>(E&) of libstdc++'s streams for E = long, unsigned short, unsigned int
+  template <typename E>
+  bool integer(E& v)
+  {
+    typedef typename std::make_unsigned<E>::type U;
+    if(!skip_blanks())
+      return false;
+    const int sign = peek(0);
+    const bool negative = sign == '-';
+    if(negative || sign == '+')
+      ++m_pos;
+    const U max = (negative && std::is_signed<E>::value) ? U(U(0) - U((std::numeric_limits<E>::min)()))
+                                                         : U((std::numeric_limits<E>::max)());
+    U result = 0;
+    bool digits = false, overflow = false;
+    for(int c = peek(0); c >= '0' && c <= '9'; c = peek(0))
+    {
+      ++m_pos;
+      digits = true;
+      const U d = U(c - '0');
+      if(result > max / 10)
+        overflow = true;
+      else
+      {
+        result = U(result * 10);
+        overflow = overflow || result > max - d;
+        result = U(result + d);
+      }
+    }
+    if(!digits || overflow)
+      return false;
+    v = negative ? E(U(U(0) - result)) : E(result);
+    return true;
+  }
+
+  // read as E, range-checked as R (operator>>(short&) and (int&) read a long), stored as T
+  template <typename E, typename R, typename T>
+  bool narrowed(double& x)
+  {
+    E e = 0;
+    if(!integer(e))
+      return false;
+    if constexpr(!std::is_same<E, R>::value)
+    {
+      if(e < E((std::numeric_limits<R>::min)()) || e > E((std::numeric_limits<R>::max)()))
+        return false;
+    }
+    x = double(static_cast<T>(static_cast<R>(e)));
+    return true;
+  }
+
+  // operator>>(T&) of libstdc++'s streams for T = float, double (num_get in the C locale):
+  // an optional sign, digits with at most one '.', then an 'e' or 'E' (after some digit) with
+  // an optional sign and digits, taken as far as they follow that pattern; then strtof / strtod
+  // must use all of it and give a finite value (an overflow fails; an underflow gives its
+  // rounded value)
+  template <typename T>
+  bool real(double& x)
+  {
+    if(!skip_blanks())
+      return false;
+    std::size_t n = 0;
+    int c = peek(0);
+    if(c == '+' || c == '-')
+      c = peek(++n);
+    for(bool mantissa = false, dot = false, exponent = false;; c = peek(++n))
+    {
+      if(c >= '0' && c <= '9')
+        mantissa = true;
+      else if(c == '.' && !dot && !exponent)
+        dot = true;
+      else if((c == 'e' || c == 'E') && mantissa && !exponent)
+      {
+        exponent = true;
+        const int sign = peek(n + 1);
+        if(sign == '+' || sign == '-')
+          ++n;
+      }
+      else
+        break;
+    }
+    const char* const first = m_data.data() + m_pos;
+    const char* const last = first + n;
+    m_pos += n;
+    T t = 0;
+    const std::from_chars_result r = std::from_chars(first != last && *first == '+' ? first + 1 : first, last, t);
+    if(r.ec == std::errc() && r.ptr == last)
+    {
+      x = double(t);
+      return true;
+    }
+    if(r.ec != std::errc::result_out_of_range)
+      return false;
+    // out of range for from_chars: strtof / strtod say whether it overflows (fails) or
+    // underflows (to a subnormal number or zero)
+    const std::string text(first, last);
+    char* end = nullptr;
+    if constexpr(std::is_same<T, float>::value)
+      t = std::strtof(text.c_str(), &end);
+    else
+      t = std::strtod(text.c_str(), &end);
+    if(end != text.c_str() + text.size() || std::isinf(t))
+      return false;
+    x = double(t);
+    return true;
+  }
+
+  std::istream& m_is;
+  std::vector<char> m_data;                 // m_data[m_pos, m_end): read from the file, not yet parsed
+  std::size_t m_pos = 0, m_end = 0;
+  bool m_at_end = false;
+};
 } // namespace ply
 
 // A polygon soup with per-point attribute values, as read.
@@ -188,11 +415,12 @@ inline std::string kind_of_property(const std::string& name)
 
 // Checks the header's structure before CGAL's parser sees it. Why: CGAL 5.5's
 // PLY_reader::init() appends every property line to the last element read, and crashes on a
-// property line before any element line (found by the fuzz test).
-inline void check_ply_header(std::istream& is, const std::string& file)
+// property line before any element line (found by the fuzz test). Returns whether the data
+// is ASCII: the second word of the second line is "ascii", as CGAL's parser decides.
+inline bool check_ply_header(std::istream& is, const std::string& file)
 {
   std::string line;
-  bool element = false;
+  bool element = false, ascii = false;
   std::size_t bytes = 0, number = 0;
   while(std::getline(is, line))
   {
@@ -204,6 +432,11 @@ inline void check_ply_header(std::istream& is, const std::string& file)
     std::istringstream words(line);
     std::string keyword;
     words >> keyword;
+    if(number == 2)
+    {
+      std::string format;
+      ascii = (words >> format) && format == "ascii";
+    }
     if(keyword == "element")
     {
       std::string name;
@@ -218,7 +451,7 @@ inline void check_ply_header(std::istream& is, const std::string& file)
     {
       is.clear();
       is.seekg(0);
-      return;
+      return ascii;
     }
   }
   throw std::runtime_error(file + ": not a PLY file (no end of header)");
@@ -229,10 +462,11 @@ inline void read_ply(const std::string& file, Soup& soup)
   std::ifstream is(file, std::ios::binary);
   if(!is)
     throw std::runtime_error("cannot open " + file);
-  check_ply_header(is, file);
+  const bool ascii = check_ply_header(is, file);
   CGAL::IO::internal::PLY_reader reader(false);
   if(!reader.init(is))
     throw std::runtime_error(file + ": not a PLY file (bad header)");
+  ply::Ascii_numbers text(is);   // the data after the header, when it is ASCII
   bool have_vertices = false;
   std::size_t strips = 0;
   for(std::size_t i = 0; i < reader.number_of_elements(); ++i)
@@ -310,18 +544,25 @@ inline void read_ply(const std::string& file, Soup& soup)
     {
       for(std::size_t k = 0; k < element.number_of_properties(); ++k)
       {
+        const ply::Property_reader& r = readers[k];
+        bool read = true;
         try
         {
-          if(readers[k].is_list)
-            readers[k].list(is, int(k) == indices ? list : unused_list);
+          if(r.is_list && ascii)
+            ply::read_list([&](bool is_count, double& x) { return text.read(is_count ? r.count : r.item, x); },
+                           int(k) == indices ? list : unused_list);
+          else if(r.is_list)
+            r.list(is, int(k) == indices ? list : unused_list);
+          else if(ascii)
+            read = text.read(r.scalar, value[k]);
           else
-            value[k] = readers[k].number(is);
+            value[k] = r.number(is);
         }
         catch(const std::runtime_error& e)
         {
           throw std::runtime_error(file + ": item " + std::to_string(j) + " of element '" + name + "': " + e.what());
         }
-        if(is.fail())
+        if(!read || (!ascii && is.fail()))   // (the ASCII blocks read to the end of the file: its state says nothing)
           throw std::runtime_error(file + ": truncated or unreadable at item " + std::to_string(j) + " of element '" + name + "'");
       }
       if(is_vertex)
@@ -364,6 +605,18 @@ inline void read_ply(const std::string& file, Soup& soup)
   }
   if(strips > 0)
     soup.notes.push_back("triangle strips expanded: " + plural(soup.polygons.size(), "triangle"));
+}
+
+// std::sort, on every core where TBB is linked; for orders with no ties (every comparison
+// here ends on the indices), whose sorted sequence is then the same for any number of threads
+template <typename Iterator, typename Less>
+void sort_without_ties(Iterator first, Iterator last, const Less& less)
+{
+#ifdef CGAL_LINKED_WITH_TBB
+  tbb::parallel_sort(first, last, less);
+#else
+  std::sort(first, last, less);
+#endif
 }
 
 // ---- is the soup already an oriented polygon mesh? ---------------------------------------------
@@ -486,7 +739,7 @@ inline void repair(Soup& s)
     for(const auto& v : s.values) if(v[a] != v[b]) return false;
     return true;
   };
-  std::sort(order.begin(), order.end(), key_less);
+  sort_without_ties(order.begin(), order.end(), key_less);
   std::size_t merged = 0;
   for(std::size_t i = 0; i < n; ++i)
   {
@@ -526,7 +779,8 @@ inline void repair(Soup& s)
       out[i] = 1;
     }
   }
-  std::sort(triangles.begin(), triangles.end());   // equal corners together, the first one first
+  // equal corners together, the first one first (the polygon numbers break the ties)
+  sort_without_ties(triangles.begin(), triangles.end(), std::less<std::pair<std::array<std::size_t, 3>, std::size_t> >());
   for(std::size_t i = 1; i < triangles.size(); ++i)
     if(triangles[i].first == triangles[i - 1].first)
     {
