@@ -206,9 +206,9 @@ inline Property_reader reader_of(const PLY_read_number* p)
 // blanks skipped, an optional sign, decimal digits; char, short and int through a long,
 // range-checked, then narrowed; unsigned types modulo 2^bits after a '-'; uchar through an
 // unsigned short. Reals: see real(). Why by hand: the stream reads each number through a
-// sentry, a std::string and strtof (0.7 s of the 1.8 s the tool took to read the Stanford
-// dragon's 33 MB ASCII PLY); here std::from_chars (the same correctly rounded values) parses
-// the text in place. The file is read in blocks of 1 MiB (a longer number grows the block, as
+// sentry, a std::string and strtof (a third of the 1.5-1.9 s the tool took to read the
+// Stanford dragon's 33 MB ASCII PLY; 1.0-1.35 s now); here std::from_chars (the same
+// correctly rounded values) parses the text in place. The file is read in blocks of 1 MiB (a longer number grows the block, as
 // the stream's std::string would grow).
 class Ascii_numbers
 {
