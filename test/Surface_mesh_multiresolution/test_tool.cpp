@@ -24,16 +24,18 @@ using smr_tool::Point;
 
 namespace {
 
-// Each test case works in a directory of its own under the working directory: CTest runs the
-// cases as parallel processes, which wrote and read the same file names (sphere.ply,
+// Each test case works in a directory of its own under the build tree's tool_work/ (whatever
+// the working directory: run by hand from the source tree, the files went there): CTest runs
+// the cases as parallel processes, which wrote and read the same file names (sphere.ply,
 // smr_stderr.txt) at the same time and sometimes read each other's files.
 struct Own_directory
 {
   std::filesystem::path previous;
   explicit Own_directory(const std::string& name) : previous(std::filesystem::current_path())
   {
-    std::filesystem::create_directories(name);
-    std::filesystem::current_path(name);
+    const std::filesystem::path dir = std::filesystem::path(SMR_TOOL_WORK_DIR) / name;
+    std::filesystem::create_directories(dir);
+    std::filesystem::current_path(dir);
   }
   ~Own_directory() { std::filesystem::current_path(previous); }
 };
@@ -500,7 +502,6 @@ namespace {
 template <typename T>
 void check_ascii_numbers_as_cgal(const std::string& text)
 {
-  using smr_tool::ply::Number_type;
   std::vector<double> cgal, ours;
   {
     std::istringstream is(text);

@@ -208,12 +208,13 @@ inline Property_reader reader_of(const PLY_read_number* p)
 // unsigned short. Reals: see real(). Why by hand: the stream reads each number through a
 // sentry, a std::string and strtof (a third of the 1.5-1.9 s the tool took to read the
 // Stanford dragon's 33 MB ASCII PLY; 1.0-1.35 s now); here std::from_chars (the same
-// correctly rounded values) parses the text in place. The file is read in blocks of 1 MiB (a longer number grows the block, as
-// the stream's std::string would grow).
+// correctly rounded values) parses the text in place. The file is read in blocks of 1 MiB,
+// allocated at the first read (a longer number grows the block, as the stream's std::string
+// would grow).
 class Ascii_numbers
 {
 public:
-  explicit Ascii_numbers(std::istream& is) : m_is(is), m_data(std::size_t(1) << 20) {}
+  explicit Ascii_numbers(std::istream& is) : m_is(is) {}
 
   // one number of type t into x; false if there is none (the end of the file, text that is no
   // number of that type, a value out of its range)
@@ -253,8 +254,8 @@ private:
       m_end -= m_pos;
       m_pos = 0;
     }
-    if(m_end == m_data.size())
-      m_data.resize(2 * m_data.size());     // one number as long as the block
+    if(m_end == m_data.size())              // the first read, or one number as long as the block
+      m_data.resize((std::max)(2 * m_data.size(), std::size_t(1) << 20));
     m_is.read(m_data.data() + m_end, static_cast<std::streamsize>(m_data.size() - m_end));
     const std::size_t got = static_cast<std::size_t>(m_is.gcount());
     m_end += got;
