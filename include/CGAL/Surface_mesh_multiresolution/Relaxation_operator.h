@@ -181,8 +181,8 @@ public:
   }
 
   /// \cond SKIP_IN_MANUAL
-  internal::Sparse_weights& sparse_weights() { return m_weights; }
-  const internal::Sparse_weights& sparse_weights() const { return m_weights; }
+  internal::Operator_weights& sparse_weights() { return m_weights; }
+  const internal::Operator_weights& sparse_weights() const { return m_weights; }
   std::vector<vertex_descriptor>& vertices_ref() { return m_vertices; }
   std::vector<Relaxation_row_rule>& rules_ref() { return m_rules; }
   void set_scheme(Relaxation_scheme s) { m_scheme = s; }
@@ -191,7 +191,7 @@ public:
 private:
   Relaxation_scheme m_scheme = Relaxation_scheme::CURVATURE;
   std::vector<vertex_descriptor> m_vertices;
-  internal::Sparse_weights m_weights;
+  internal::Operator_weights m_weights;
   std::vector<Relaxation_row_rule> m_rules;
 };
 

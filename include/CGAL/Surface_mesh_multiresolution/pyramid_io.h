@@ -81,8 +81,8 @@ public:
     static_assert(std::is_trivially_copyable<T>::value, "");
     m_bytes.append(reinterpret_cast<const char*>(&x), sizeof(T));
   }
-  template <typename T>
-  void array(const std::vector<T>& v)
+  template <typename T, typename Allocator>
+  void array(const std::vector<T, Allocator>& v)
   {
     scalar(std::uint64_t(v.size()));
     if(!v.empty())
@@ -110,8 +110,8 @@ public:
     m_pos += sizeof(T);
     return true;
   }
-  template <typename T>
-  bool array(std::vector<T>& v)
+  template <typename T, typename Allocator>
+  bool array(std::vector<T, Allocator>& v)
   {
     std::uint64_t n;
     if(!scalar(n) || n > (m_bytes.size() - m_pos) / sizeof(T)) return false;

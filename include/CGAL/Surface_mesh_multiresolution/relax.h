@@ -108,7 +108,8 @@ struct Relaxation_setup
   const unsigned char* constrained() const { return fixed.empty() ? nullptr : fixed.data(); }
 
   // the weights on the coordinates brought to a safe range (geometry_for_computations(): exact, weights unchanged)
-  void build(Sparse_weights& w, std::vector<Relaxation_row_rule>& rules)
+  template <typename Weights>
+  void build(Weights& w, std::vector<Relaxation_row_rule>& rules)
   {
     builder.build(scheme, geometry_for_computations(xyz, m_scaled).data(), constrained(), w, rules);
   }

@@ -59,13 +59,15 @@ inline bool strictly_increasing_below(const std::vector<Index>& v, std::size_t b
   return true;
 }
 
-inline bool all_below(const std::vector<Index>& v, std::size_t bound)
+template <typename Allocator>
+bool all_below(const std::vector<Index, Allocator>& v, std::size_t bound)
 {
   for(Index x : v) if(x >= bound) return false;
   return true;
 }
 
-inline bool all_finite(const std::vector<double>& v)
+template <typename Allocator>
+bool all_finite(const std::vector<double, Allocator>& v)
 {
   for(double x : v) if(!std::isfinite(x)) return false;
   return true;

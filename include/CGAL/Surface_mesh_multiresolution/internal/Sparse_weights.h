@@ -20,12 +20,18 @@ namespace Surface_mesh_multiresolution {
 namespace internal {
 
 // Row-stochastic weights in compressed sparse rows: row i holds the pairs
-// (columns[k], values[k]) for offsets[i] <= k < offsets[i+1].
-struct Sparse_weights
+// (columns[k], values[k]) for offsets[i] <= k < offsets[i+1]. Two kinds of arrays (the same
+// rows, the same arithmetic): Sparse_weights, the package's own, whose resize() leaves the
+// entries uninitialised (Uninitialized_vector: the builders write every entry; the zero fill
+// of a std::vector was a sequential memset of 12 bytes per entry, with its first-touch page
+// faults, at every level of a decomposition), and Operator_weights, in the std::vector types
+// that Relaxation_operator's accessors return.
+template <typename IndexVector, typename ValueVector>
+struct Basic_sparse_weights
 {
-  std::vector<Index> offsets{0};
-  std::vector<Index> columns;
-  std::vector<double> values;
+  IndexVector offsets{0};
+  IndexVector columns;
+  ValueVector values;
 
   std::size_t number_of_rows() const { return offsets.size() - 1; }
 
@@ -126,6 +132,9 @@ private:
       row_fixed<D>(i, in, out);
   }
 };
+
+typedef Basic_sparse_weights<Index_array, Uninitialized_vector<double> > Sparse_weights;
+typedef Basic_sparse_weights<std::vector<Index>, std::vector<double> > Operator_weights;
 
 } // namespace internal
 } // namespace Surface_mesh_multiresolution

@@ -269,7 +269,12 @@ private:
   // listed twice (or a loop): the matching is then ambiguous.
   bool match_twins_by_smaller_end()
   {
-    twin.assign(3 * nf, invalid_index);
+    // filled in parallel (a border halfedge's twin stays invalid_index): assign() was a
+    // sequential fill, with the first-touch page faults of the array, at every level
+    twin.resize(3 * nf);
+    parallel_for_blocks(twin.size(), [&](std::size_t first, std::size_t last) {
+      std::fill(twin.data() + first, twin.data() + last, invalid_index);
+    }, 65536);
     std::atomic<bool> ambiguous(false);
     const bool apexes = !out_apex.empty();
     parallel_for_blocks(n, [&](std::size_t first, std::size_t last) {

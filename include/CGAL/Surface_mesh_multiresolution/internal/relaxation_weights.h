@@ -168,8 +168,10 @@ public:
   }
 
   // xyz: 3 doubles per row; fixed: nullptr or one flag per row (constrained vertices)
+  // (Weights: Sparse_weights or Operator_weights)
+  template <typename Weights>
   void build(Relaxation_scheme scheme, const double* xyz, const unsigned char* fixed,
-             Sparse_weights& w, std::vector<Relaxation_row_rule>& rules)
+             Weights& w, std::vector<Relaxation_row_rule>& rules)
   {
     const std::size_t n = m_n;
     rules.resize(n);
@@ -501,7 +503,8 @@ private:
   }
 
   // SOD rows have lengths known only once assembled: one sequential pass into an upper bound
-  void build_sod_rows(const double* xyz, const unsigned char* fixed, Sparse_weights& w, std::vector<Relaxation_row_rule>& rules)
+  template <typename Weights>
+  void build_sod_rows(const double* xyz, const unsigned char* fixed, Weights& w, std::vector<Relaxation_row_rule>& rules)
   {
     const std::size_t n = m_n;
     compute_hinge_coefficients(xyz);
