@@ -192,3 +192,42 @@ TEST_CASE("a Surface_mesh with removed, not garbage-collected elements", "[input
   SMR::relax(m);
   for(auto v : vertices(m)) CHECK(std::isfinite(m.point(v).x()));
 }
+
+TEST_CASE("the index view of a Surface_mesh read in parallel is the face loop's", "[input][index-view]")
+{
+  // A Surface_mesh with its own vertex indices and no removed element is read in parallel
+  // (rows = indices, face f at 3 f); any other vertex index map takes the loop over faces(tm).
+  // Both give the same arrays, and on defects the same first face, across parallel blocks.
+  typedef SMR::internal::Indexed_mesh<Mesh> View;
+  Mesh m = smr_test::icosphere<Mesh>(5);   // 20480 faces: several blocks
+  REQUIRE(m.number_of_faces() > 2 * 8192);   // blocks of 8192 faces: the defects below lie in two
+  auto ids = m.add_property_map<Mesh::Vertex_index, std::size_t>("v:test_id").first;
+  for(auto v : vertices(m)) ids[v] = v.idx();
+  static_assert(SMR::internal::Is_surface_mesh_with_own_indices<Mesh, decltype(get(CGAL::vertex_index, m))>::value, "");
+  static_assert(!SMR::internal::Is_surface_mesh_with_own_indices<Mesh, decltype(ids)>::value, "");
+  auto views = [&](const Mesh& mesh, View& fast, View& loop) {
+    SMR::internal::build_indexed_mesh(mesh, get(CGAL::vertex_index, mesh), fast);
+    SMR::internal::build_indexed_mesh(mesh, ids, loop);
+  };
+  View fast, loop;
+  views(m, fast, loop);
+  CHECK(fast.triangles == loop.triangles);
+  CHECK(fast.vertices == loop.vertices);
+  CHECK(fast.row_of == loop.row_of);
+  CHECK(fast.triangles.size() == 3 * m.number_of_faces());
+
+  // faces that repeat a vertex, in two blocks: both paths name the first, with the same words
+  Mesh bad = m;
+  auto bad_ids = bad.property_map<Mesh::Vertex_index, std::size_t>("v:test_id").first;
+  for(std::size_t f : {std::size_t(17000), std::size_t(9000)})
+  {
+    const Mesh::Halfedge_index h = bad.halfedge(Mesh::Face_index(static_cast<Mesh::size_type>(f)));
+    bad.set_target(h, bad.target(bad.next(h)));   // face f: its first two targets equal
+  }
+  std::string fast_error, loop_error;
+  try { View v; SMR::internal::build_indexed_mesh(bad, get(CGAL::vertex_index, bad), v); } catch(const std::invalid_argument& e) { fast_error = e.what(); }
+  try { View v; SMR::internal::build_indexed_mesh(bad, bad_ids, v); } catch(const std::invalid_argument& e) { loop_error = e.what(); }
+  CHECK(fast_error == loop_error);
+  CHECK(fast_error.find("face 9000 ") != std::string::npos);
+  CHECK(fast_error.find("repeats a vertex") != std::string::npos);
+}
