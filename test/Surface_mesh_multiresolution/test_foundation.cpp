@@ -205,12 +205,9 @@ TEST_CASE("the index view of a Surface_mesh read in parallel is the face loop's"
   for(auto v : vertices(m)) ids[v] = v.idx();
   static_assert(SMR::internal::Is_surface_mesh_with_own_indices<Mesh, decltype(get(CGAL::vertex_index, m))>::value, "");
   static_assert(!SMR::internal::Is_surface_mesh_with_own_indices<Mesh, decltype(ids)>::value, "");
-  auto views = [&](const Mesh& mesh, View& fast, View& loop) {
-    SMR::internal::build_indexed_mesh(mesh, get(CGAL::vertex_index, mesh), fast);
-    SMR::internal::build_indexed_mesh(mesh, ids, loop);
-  };
   View fast, loop;
-  views(m, fast, loop);
+  SMR::internal::build_indexed_mesh(m, get(CGAL::vertex_index, m), fast);
+  SMR::internal::build_indexed_mesh(m, ids, loop);
   CHECK(fast.triangles == loop.triangles);
   CHECK(fast.vertices == loop.vertices);
   CHECK(fast.row_of == loop.row_of);

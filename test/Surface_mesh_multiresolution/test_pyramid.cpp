@@ -761,10 +761,9 @@ TEST_CASE("stored weights are the relaxation operators of the levels and change 
       const auto R = SMR::relaxation_operator(before[k], SMR::parameters::relaxation_scheme(scheme));
       const auto& w = pyr.levels()[k].weights;
       // (the pyramid's arrays and the operator's have different allocators: compared entry by entry)
-      auto same = [](const auto& x, const auto& y) { return x.size() == y.size() && std::equal(x.begin(), x.end(), y.begin()); };
-      CHECK(same(w.offsets, R.row_offsets()));
-      CHECK(same(w.columns, R.column_indices()));
-      CHECK(same(w.values, R.weights()));
+      CHECK(std::equal(w.offsets.begin(), w.offsets.end(), R.row_offsets().begin(), R.row_offsets().end()));
+      CHECK(std::equal(w.columns.begin(), w.columns.end(), R.column_indices().begin(), R.column_indices().end()));
+      CHECK(std::equal(w.values.begin(), w.values.end(), R.weights().begin(), R.weights().end()));
     }
     for(std::size_t k = 0; k <= pyr.number_of_levels(); ++k)
     {

@@ -116,11 +116,7 @@ void build_indexed_surface_mesh(const CGAL::Surface_mesh<Point>& tm, Indexed_mes
     return tm.next(h2) != h0 || a == b || b == c || c == a;
   });
   if(bad < nf)
-  {
-    im.vertices.clear();
-    im.triangles.clear();
     throw std::invalid_argument(triangle_defect(tm, typename Mesh::Face_index(static_cast<size_type>(bad)), bad));
-  }
 }
 
 // Numbers the vertices and collects the triangles.
@@ -139,7 +135,7 @@ void build_indexed_mesh(const TriangleMesh& tm, VertexIndexMap vim, Indexed_mesh
     throw std::invalid_argument("the mesh has too many vertices (at most 2^32-2 are supported)");
   if constexpr(Is_surface_mesh_with_own_indices<TriangleMesh, VertexIndexMap>::value)
   {
-    if(!tm.has_garbage() && 3 * tm.number_of_faces() < std::size_t(invalid_index))
+    if(!tm.has_garbage())
     {
       build_indexed_surface_mesh(tm, im);
       return;
