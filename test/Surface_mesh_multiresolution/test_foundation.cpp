@@ -228,3 +228,63 @@ TEST_CASE("the index view of a Surface_mesh read in parallel is the face loop's"
   CHECK(fast_error.find("face 9000 ") != std::string::npos);
   CHECK(fast_error.find("repeats a vertex") != std::string::npos);
 }
+
+TEST_CASE("large blocks freed inside a Block_pool_scope are reused, trimmed and given back at its end", "[memory]")
+{
+  typedef SMR::internal::Block_pool Pool;
+  typedef SMR::internal::Uninitialized_vector<double> Doubles;
+  Pool& pool = Pool::instance();
+  const std::size_t big = Pool::default_kept_bytes / sizeof(double);   // doubles in the smallest kept block
+  REQUIRE(pool.kept_bytes() == 0);
+  {
+    Doubles a(big);                                // outside any scope: given back at once
+  }
+  CHECK(pool.kept_bytes() == 0);
+  {
+    const SMR::internal::Block_pool_scope scope;
+    const double* first = nullptr;
+    {
+      Doubles a(big + 1000);
+      first = a.data();
+    }
+    CHECK(pool.kept_bytes() == (big + 1000) * sizeof(double));
+    const std::size_t reuses = pool.reuses();
+    {
+      Doubles b(big);                              // held by the kept block, within a quarter: taken as it is
+      CHECK(b.data() == first);
+      CHECK(pool.reuses() == reuses + 1);
+      CHECK(Pool::size(b.data()) == (big + 1000) * sizeof(double));
+      CHECK(pool.kept_bytes() == 0);
+    }
+    {
+      Doubles c(big / 8);                          // 4 MiB: the block's tail is given back
+      CHECK(Pool::size(c.data()) == big / 8 * sizeof(double));
+      CHECK(pool.kept_bytes() == 0);
+      SMR::internal::Uninitialized_vector<double> small(100);   // under 1 MiB: never from the pool
+      CHECK(Pool::size(small.data()) == 100 * sizeof(double));
+    }
+    CHECK(pool.kept_bytes() == 0);                 // the 4 MiB block is not kept (glibc reuses such blocks)
+    {
+      Doubles x(big), y(big);
+      x[0] = y[0] = 1.;
+    }
+    CHECK(pool.kept_bytes() == 2 * big * sizeof(double));
+    {
+      Doubles z(3 * big);                          // no kept block holds it: they are given back first
+      CHECK(pool.kept_bytes() == 0);
+      {
+        const SMR::internal::Block_pool_scope nested;
+        Doubles w(std::move(z));
+      }
+      CHECK(pool.kept_bytes() == 3 * big * sizeof(double));   // kept until the outer scope ends
+    }
+  }
+  CHECK(pool.kept_bytes() == 0);
+  Doubles outlives;
+  {
+    const SMR::internal::Block_pool_scope scope;
+    outlives.resize(big);                          // made in a scope, freed after it: freed, not kept
+  }
+  outlives = Doubles();
+  CHECK(pool.kept_bytes() == 0);
+}

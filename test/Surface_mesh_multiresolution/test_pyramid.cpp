@@ -398,6 +398,40 @@ TEST_CASE("decomposition is deterministic: runs with all threads, with four (par
   }
 }
 
+TEST_CASE("levels that reuse the blocks of the levels before them build the same pyramid", "[pyramid][memory]")
+{
+  // blocks from 4 KiB are kept and reused (32 MiB by default: a mesh of about a million vertices)
+  Mesh m = smr_test::icosphere<Mesh>(4);
+  auto scalar = m.add_property_map<Mesh::Vertex_index, double>("v:scalar", 0.).first;
+  for(auto v : vertices(m))
+    scalar[v] = std::sin(3. * m.point(v).x()) + m.point(v).z();
+  const auto expected = SMR::decompose(m, SMR::parameters::vertex_attribute_maps(scalar));
+  SMR::internal::Block_pool& pool = SMR::internal::Block_pool::instance();
+  pool.set_sizes(4096, 4096);
+  const std::size_t reuses = pool.reuses();
+  const auto reused = SMR::decompose(m, SMR::parameters::vertex_attribute_maps(scalar));
+  const std::size_t left = pool.kept_bytes(), taken = pool.reuses() - reuses;
+  pool.set_sizes(SMR::internal::Block_pool::default_kept_bytes, SMR::internal::Block_pool::default_reused_bytes);
+  CHECK(taken > 4 * expected.number_of_levels());    // several arrays per level took a block of the level before
+  CHECK(left == 0);                                  // nothing is held once decompose() returns
+  REQUIRE(reused.number_of_levels() == expected.number_of_levels());
+  REQUIRE(expected.number_of_levels() > 5);
+  for(std::size_t k = 0; k < expected.number_of_levels(); ++k)
+  {
+    const auto& a = reused.levels()[k];
+    const auto& b = expected.levels()[k];
+    CHECK(a.odd_rows == b.odd_rows);
+    CHECK(a.collapse_targets == b.collapse_targets);
+    CHECK(a.details == b.details);
+    CHECK(a.corrections == b.corrections);
+    CHECK(a.removed_faces == b.removed_faces);
+    CHECK(a.renamed_corners == b.renamed_corners);
+  }
+  CHECK(reused.coarse_faces() == expected.coarse_faces());
+  CHECK(reused.coarse_values() == expected.coarse_values());
+  check_exact_round_trip(m, reused);
+}
+
 namespace {
 
 // a copy of m with vertex v numbered number[v], the faces in the same order with the same

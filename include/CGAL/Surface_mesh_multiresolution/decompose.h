@@ -410,6 +410,8 @@ Pyramid<TriangleMesh> decompose(const TriangleMesh& tm, const NamedParameters& n
   Visitor visitor = choose_parameter<Visitor>(get_parameter(np, CGAL::internal_np::visitor));
   const auto maps = internal::as_tuple(choose_parameter(get_parameter(np, internal_np::vertex_attribute_maps), std::tuple<>()));
 
+  // the levels reuse the large blocks the levels before them freed (internal::Block_pool)
+  const internal::Block_pool_scope reuse_blocks;
   Pyramid<TriangleMesh> pyr;
   internal::Pyramid_access::set_relaxation_scheme(pyr, scheme);
   // validated index view of the input, the values of every channel, the collapse costs

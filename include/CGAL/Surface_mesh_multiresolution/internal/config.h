@@ -16,6 +16,8 @@
 #error "Surface_mesh_multiresolution requires CGAL 5.5 or later"
 #endif
 
+#include <CGAL/Surface_mesh_multiresolution/internal/Block_pool.h>
+
 #include <boost/core/noinit_adaptor.hpp>
 #include <boost/optional.hpp>
 #include <cstdint>
@@ -47,7 +49,7 @@ typedef std::uint32_t Index;
 // a sequential memset of the whole array on the calling thread before the parallel loops that
 // write it (5 % of a decomposition's samples). assign() and resize(n, value) still fill.
 template <typename T>
-using Uninitialized_vector = std::vector<T, boost::noinit_adaptor<std::allocator<T> > >;
+using Uninitialized_vector = std::vector<T, boost::noinit_adaptor<Pooled_allocator<T> > >;
 typedef Uninitialized_vector<Index> Index_array;
 
 // A hint that the cache line holding `p` will be read soon. Loops that visit halfedges in
