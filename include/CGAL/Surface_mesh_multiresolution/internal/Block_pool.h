@@ -11,8 +11,8 @@
 
 #include <cstddef>
 #include <cstdlib>
-#include <limits>
 #include <iterator>
+#include <limits>
 #include <map>
 #include <mutex>
 #include <new>
@@ -34,11 +34,9 @@ namespace internal {
 // (realloc) when it is more than a quarter too large. A request of 32 MiB or more that no kept
 // block holds first gives back kept blocks of as many bytes (the largest first), so that the
 // memory held stays that of the system allocator alone; everything kept is given back when the
-// last scope ends. Measured (design notes, "Large blocks kept from level to level"): 3.1M
-// vertices 24.3-24.8 -> 21.6-22.8 s, peak +1.5 %; the dragon unchanged (its arrays are smaller).
-// Tried and not kept: keeping blocks from 1 MiB on (the dragon's peak +40 MB: kept blocks are
-// not reused by the std::vectors that glibc would have put in their place), and keeping large
-// blocks for large requests only (3.1M vertices faster still, 19.8 s, but the peak +15 %).
+// last scope ends. Measured and the variants tried: design notes, "Large blocks kept from
+// level to level" (3.1M vertices 24.2-25.1 -> 21.7-22.5 s, peak +0.9 %; the dragon unchanged,
+// its arrays being smaller).
 // Why by hand: std::pmr's pools keep every block of every size class until released, and a
 // process-wide setting of the allocator (mallopt, GLIBC_TUNABLES) is the user's to choose, not a
 // library's. Every block comes from std::malloc with its size in a header, so that any block can
@@ -63,7 +61,7 @@ public:
   {
     if(bytes > (std::numeric_limits<std::size_t>::max)() - header)
       throw std::bad_alloc();
-    if(bytes >= m_reused_bytes)
+    if(bytes >= m_reuse_from)
     {
       std::lock_guard<std::mutex> lock(m_mutex);
       if(m_scopes > 0 && !m_kept.empty())
@@ -79,7 +77,7 @@ public:
         }
         // none holds it: a block the system would map anew; kept blocks of as many bytes go
         // back first (the largest first), so that what the process holds does not grow
-        if(bytes >= m_kept_bytes)
+        if(bytes >= m_keep_from)
           for(std::size_t released = 0; released < bytes && !m_kept.empty();)
           {
             const auto last = std::prev(m_kept.end());
@@ -101,7 +99,7 @@ public:
     if(block == nullptr)
       return;
     const std::size_t bytes = size(block);
-    if(bytes >= m_kept_bytes)
+    if(bytes >= m_keep_from)
     {
       std::lock_guard<std::mutex> lock(m_mutex);
       if(m_scopes > 0)
@@ -136,11 +134,11 @@ public:
   }
 
   // other sizes than the defaults (tests: the reuse of blocks by small meshes); no scope may exist
-  void set_sizes(std::size_t kept_bytes_at_least, std::size_t reused_bytes)
+  void set_sizes(std::size_t keep_from, std::size_t reuse_from)
   {
     std::lock_guard<std::mutex> lock(m_mutex);
-    m_kept_bytes = kept_bytes_at_least;
-    m_reused_bytes = reused_bytes;
+    m_keep_from = keep_from;
+    m_reuse_from = reuse_from;
   }
 
   // the number of bytes kept for reuse (tests)
@@ -179,7 +177,8 @@ private:
 
   std::mutex m_mutex;
   std::size_t m_scopes = 0, m_reuses = 0;
-  std::size_t m_kept_bytes = default_kept_bytes, m_reused_bytes = default_reused_bytes;
+  std::size_t m_keep_from = default_kept_bytes;      // blocks kept when freed: from this size on
+  std::size_t m_reuse_from = default_reused_bytes;   // requests that look for a kept block: from this size on
   std::multimap<std::size_t, void*> m_kept;        // size -> block
 };
 
