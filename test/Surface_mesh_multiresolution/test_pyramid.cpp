@@ -927,9 +927,9 @@ TEST_CASE("the default quadrics on index arrays and SMS's policies on a working 
   check_exact_round_trip(m, b);
 }
 
-TEST_CASE("a vertex pinched between two fans survives decomposition and reconstruction", "[pyramid][input]")
+// two planar grids that touch at one corner: the halfedge mesh is valid, the corner has two border gaps
+Mesh pinched_grids()
 {
-  // two planar grids that touch at one corner: the halfedge mesh is valid, the corner has two border gaps
   Mesh m;
   const int n = 6;
   std::vector<Mesh::Vertex_index> a(n * n), b(n * n);
@@ -951,6 +951,12 @@ TEST_CASE("a vertex pinched between two fans survives decomposition and reconstr
         REQUIRE(CGAL::Euler::add_face(t1, m) != Mesh::null_face());
         REQUIRE(CGAL::Euler::add_face(t2, m) != Mesh::null_face());
       }
+  return m;
+}
+
+TEST_CASE("a vertex pinched between two fans survives decomposition and reconstruction", "[pyramid][input]")
+{
+  const Mesh m = pinched_grids();
   REQUIRE(CGAL::is_valid_polygon_mesh(m));
   const auto pyr = SMR::decompose(m);
   REQUIRE(pyr.number_of_levels() > 0);
@@ -1190,6 +1196,158 @@ TEST_CASE("Triangle_halfedges pairs the halfedges of the mesh, also when a direc
   CHECK(long_ring.twin[0] == 3 * 41);                        // the first 0 -> 1 pairs with 1 -> 0 (first come, first served)
   CHECK(!long_ring.has_face(long_ring.twin[3 * 40]));        // the second gets a border twin
   check_twins_only(long_ring, fan);
+}
+
+// every array of two halfedge structures
+void check_same_halfedges(const SMR::internal::Triangle_halfedges& a, const SMR::internal::Triangle_halfedges& b)
+{
+  CHECK(a.n == b.n);
+  CHECK(a.nf == b.nf);
+  CHECK(a.repeated_directed_edge == b.repeated_directed_edge);
+  CHECK(a.source == b.source);
+  CHECK(a.target == b.target);
+  CHECK(a.twin == b.twin);
+  CHECK(a.out_offsets == b.out_offsets);
+  CHECK(a.out == b.out);
+  CHECK(a.out_target == b.out_target);
+  CHECK(a.out_apex == b.out_apex);
+}
+
+TEST_CASE("the halfedges of a level derived from the level before and its collapses are those built from its faces", "[pyramid][halfedges]")
+{
+  typedef SMR::internal::Index Index;
+  const Index none = SMR::internal::invalid_index;
+  std::vector<Mesh> meshes;
+  meshes.push_back(smr_test::icosphere<Mesh>(3));
+  meshes.push_back(smr_test::planar_grid<Mesh>(12, 0.2));   // a border
+  {
+    Mesh two = smr_test::icosphere<Mesh>(2);                 // two components, one with a border
+    Mesh grid = smr_test::planar_grid<Mesh>(6, 0.1);
+    CGAL::copy_face_graph(grid, two);
+    meshes.push_back(two);
+  }
+  meshes.push_back(pinched_grids());
+  for(const char* name : {"meshes/mushroom.off", "meshes/elephant-with-holes.off"})
+  {
+    Mesh m;
+    if(smr_test::read_cgal_mesh(name, m))
+      meshes.push_back(m);
+  }
+  for(const Mesh& m : meshes)
+  {
+    SMR::internal::Indexed_mesh<Mesh> im;
+    SMR::internal::build_indexed_mesh(m, get(CGAL::vertex_index, m), im);
+    std::vector<Index> tri = im.triangles;
+    std::size_t n = im.number_of_vertices();
+    std::vector<double> xyz;
+    SMR::internal::read_coordinates(im.vertices, get(CGAL::vertex_point, m), smr_test::Kernel(), xyz);
+    SMR::internal::Triangle_halfedges th;
+    th.build(n, tri, true);
+    std::size_t levels = 0, removed_faces = 0;
+    while(n > 8 && levels < 40)
+    {
+      // the level's collapses, selected as decompose() selects them
+      SMR::internal::Plane_quadrics quadrics;
+      quadrics.initialize(th, xyz);
+      std::vector<unsigned char> on_border, locked;
+      SMR::internal::Index_array source_of_target;
+      std::vector<SMR::internal::Collapse> accepted;
+      SMR::internal::select_collapses(th, xyz.data(), [&](Index o, Index e) { return quadrics.cost(o, e); }, std::size_t(-1),
+                                      on_border, locked, source_of_target, accepted);
+      if(accepted.empty())
+        break;
+      // the collapses made on the face array: a face holding o and its target is removed (its
+      // collapsed halfedge starts at o's corner for o -> e, at e's for e -> o), the others
+      // renamed; the kept faces and the even rows numbered in order
+      std::vector<Index> target_of(n, none);
+      for(const SMR::internal::Collapse& c : accepted)
+        target_of[c.o] = c.e;
+      const std::size_t nf = tri.size() / 3;
+      SMR::internal::Collapsed_faces change;
+      change.face_after.assign(nf, none);
+      std::vector<Index> new_row(n, none), next_tri;
+      Index rows = 0;
+      for(std::size_t v = 0; v < n; ++v)
+        if(target_of[v] == none)
+          new_row[v] = rows++;
+      for(std::size_t f = 0; f < nf; ++f)
+      {
+        int odd = -1;
+        for(int i = 0; i < 3; ++i)
+          if(target_of[tri[3 * f + i]] != none)
+          {
+            REQUIRE(odd == -1);                                // no face holds two odd vertices
+            odd = i;
+          }
+        const Index e = odd < 0 ? none : target_of[tri[3 * f + odd]];
+        if(odd >= 0 && (tri[3 * f + (odd + 1) % 3] == e || tri[3 * f + (odd + 2) % 3] == e))
+        {
+          change.face_after[f] = SMR::internal::Collapsed_faces::removed_face + (tri[3 * f + (odd + 1) % 3] == e ? odd : (odd + 2) % 3);
+          ++removed_faces;
+          continue;
+        }
+        change.face_after[f] = static_cast<Index>(next_tri.size() / 3);
+        for(int i = 0; i < 3; ++i)
+          next_tri.push_back(new_row[i == odd ? e : tri[3 * f + i]]);
+      }
+      std::vector<double> next_xyz;
+      for(std::size_t v = 0; v < n; ++v)
+        if(target_of[v] == none)
+          next_xyz.insert(next_xyz.end(), xyz.begin() + 3 * v, xyz.begin() + 3 * v + 3);
+      th.keep_twins_only();                                    // what decompose() keeps of the level before
+      SMR::internal::Triangle_halfedges derived, built;
+      CHECK(derived.build_after_collapses(std::move(th), std::move(change), rows, next_tri, true));
+      CHECK(th.twin.empty());                                  // freed once read
+      CHECK(change.face_after.empty());
+      built.build(rows, next_tri, true);
+      check_same_halfedges(derived, built);
+      th = std::move(built);
+      tri.swap(next_tri);
+      xyz.swap(next_xyz);
+      n = rows;
+      ++levels;
+    }
+    CHECK(levels >= 5);
+    CHECK(removed_faces > 0);
+  }
+  // a level before with a repeated directed edge (0 -> 1 in two faces): no derivation, the
+  // halfedges are built from the faces (first come, first served)
+  {
+    const std::vector<Index> tri = {0, 1, 2, 1, 0, 3, 0, 1, 4};
+    SMR::internal::Triangle_halfedges before, derived, built;
+    before.build(5, tri, true);
+    REQUIRE(before.repeated_directed_edge);
+    SMR::internal::Collapsed_faces change;
+    change.face_after = {0, 1, 2};                           // nothing removed
+    CHECK(!derived.build_after_collapses(std::move(before), std::move(change), 5, tri, true));
+    built.build(5, tri, true);
+    check_same_halfedges(derived, built);
+  }
+  // collapses against the rule (a removed face entered through its collapsed edge 0 -> 1):
+  // built from the faces
+  {
+    const std::vector<Index> tri = {0, 1, 2, 1, 0, 3}, after = {0, 1, 2};
+    SMR::internal::Triangle_halfedges before, derived, built;
+    before.build(4, tri, true);
+    SMR::internal::Collapsed_faces change;
+    change.face_after = {SMR::internal::Collapsed_faces::removed_face + 0, 0};   // face 0 removed, its collapsed halfedge at corner 0
+    CHECK(!derived.build_after_collapses(std::move(before), std::move(change), 3, after, true));
+    built.build(3, after, true);
+    check_same_halfedges(derived, built);
+  }
+  // two crossed collapses 0 -> 1 and 3 -> 2 (2 next to 0, 1 next to 3), which the selection
+  // refuses: the removed faces (0, 1, 2) and (2, 1, 3) share their third edges; built from the faces
+  {
+    const std::vector<Index> tri = {0, 1, 2, 2, 1, 3, 0, 2, 4, 3, 1, 5}, after = {0, 1, 2, 1, 0, 3};
+    SMR::internal::Triangle_halfedges before, derived, built;
+    before.build(6, tri, true);
+    REQUIRE(!before.repeated_directed_edge);
+    SMR::internal::Collapsed_faces change;                   // collapsed halfedges 0 -> 1 (corner 0), 3 -> 2 (corner 2)
+    change.face_after = {SMR::internal::Collapsed_faces::removed_face + 0, SMR::internal::Collapsed_faces::removed_face + 2, 0, 1};
+    CHECK(!derived.build_after_collapses(std::move(before), std::move(change), 4, after, true));
+    built.build(4, after, true);
+    check_same_halfedges(derived, built);
+  }
 }
 
 TEST_CASE("the corners listed by source in parallel ranges are those of the sequential counting sort", "[pyramid][halfedges]")

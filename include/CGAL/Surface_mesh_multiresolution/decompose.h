@@ -98,6 +98,8 @@ private:
     record_rows_and_targets(level);
     analyse_channels(level);
     collapse_face_array(level);
+    m_halfedges_before = m_builder.take_connectivity();
+    m_halfedges_before.keep_twins_only();
     m_builder = Relaxation_weight_builder();   // a level's halfedges follow its size
     move_to_next_level(level);
     m_visitor.on_level_finished(k, level.odd_rows.size());
@@ -106,7 +108,12 @@ private:
 
   void connectivity(std::size_t k)
   {
-    m_builder.set_connectivity(rows(), m_faces, true);   // with apexes: the selection's tests read them
+    // with apexes: the selection's tests read them; after the first level, derived from the
+    // halfedges of the level before and its collapses
+    if(k == 0)
+      m_builder.set_connectivity(rows(), m_faces, true);
+    else
+      m_builder.set_connectivity_after_collapses(rows(), m_faces, std::move(m_halfedges_before), std::move(m_collapsed));
     if(k == 0)
       m_cost.initialize(m_builder.connectivity(), xyz());   // on M_0, rows are the input's vertex numbers
     m_cost.begin_level(m_rows_to_vertices, xyz());
@@ -130,7 +137,7 @@ private:
     if(m_scheme != Relaxation_scheme::SECOND_ORDER_DIFFERENCE)   // SOD's hinges read the twins
     {
       m_builder.pair_corners_from_halfedges();
-      m_builder.keep_outgoing_lists_only();
+      m_builder.keep_outgoing_lists_only(true);     // the twins too: the next level's halfedges read them
     }
   }
 
@@ -218,7 +225,11 @@ private:
   Index_array m_source_of_target;               // selection scratch, kept across the levels
   std::vector<Collapse> m_accepted;
   std::vector<Index> m_target_of;               // the target of each accepted collapse's source, else invalid_index
-  std::vector<unsigned char> m_face_removed;    // the faces of M_k a level removes
+  // what the next level's halfedges are derived from (Triangle_halfedges::build_after_collapses()):
+  // M_k's halfedges (their twins) and the faces the level removed and kept
+  Triangle_halfedges m_halfedges_before;
+  Collapsed_faces m_collapsed;
+  std::vector<unsigned char> m_face_removed;    // per face of M_k: 0 if kept, else 1 + the corner where its collapsed halfedge starts
 };
 
 // The collapses on the face array, recording how to undo them. The faces of two accepted
@@ -260,8 +271,9 @@ void Decomposition<TriangleMesh, CostModel, Visitor>::collapse_face_array(Pyrami
         if(!th.has_face(th.out[q]))                      // no face (the same test as the count)
           continue;
         const Index g = th.out[q];                         // o -> a in face g / 3, o at corner g % 3
-        if(holds_target(q, c.e))
-          m_face_removed[g / 3] = 1;                       // (no other collapse renames its corners)
+        if(holds_target(q, c.e))                           // (no other collapse renames its corners)
+          m_face_removed[g / 3] = static_cast<unsigned char>(
+              1 + (m_faces[Triangle_halfedges::next_in_face(g)] == c.e ? g % 3 : Triangle_halfedges::prev_in_face(g) % 3));
         else
         {
           level.renamed_corners[renamed] = g;
@@ -286,15 +298,20 @@ void Decomposition<TriangleMesh, CostModel, Visitor>::take_out_removed_faces(Pyr
   level.removed_face_positions.resize(nr);
   level.removed_faces.resize(3 * nr);
   std::vector<Index> kept(3 * (number_of_faces - nr));
+  m_collapsed.face_after.resize(number_of_faces);
   removed_faces.visit([&](std::size_t p, std::size_t rank, bool is_removed) {
     const Index* t = m_faces.data() + 3 * p;
     if(is_removed)
     {
       level.removed_face_positions[rank] = static_cast<Index>(p);
       copy_values(t, 3, level.removed_faces.data() + 3 * rank);
+      m_collapsed.face_after[p] = Collapsed_faces::removed_face + (m_face_removed[p] - 1u);
     }
     else
+    {
+      m_collapsed.face_after[p] = static_cast<Index>(p - rank);
       copy_values(t, 3, kept.data() + 3 * (p - rank));
+    }
   });
   m_faces.swap(kept);
 }

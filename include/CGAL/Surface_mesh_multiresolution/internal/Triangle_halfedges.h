@@ -71,6 +71,18 @@ inline void list_face_halfedges_by_source(std::size_t n, const std::vector<Index
   });
 }
 
+// What one level of half-edge collapses did to a face array (decompose(): M_k to M_{k+1}), for
+// Triangle_halfedges::build_after_collapses().
+struct Collapsed_faces
+{
+  // per face: its number after if kept, else removed_face + the corner where its collapsed
+  // halfedge starts (one array: one cache miss per neighbour read)
+  Index_array face_after;
+  static constexpr Index removed_face = Index(1) << 31;
+  static bool is_removed(Index a) { return (a & removed_face) != 0; }
+  static Index collapsed_corner(Index a) { return a & ~removed_face; }
+};
+
 // Index-based halfedge structure of a triangle mesh, built from its triangle array alone
 // (no walk on the mesh): halfedge 3f+k goes from corner k to corner k+1 of face f; the
 // halfedges of border edges that have no face are numbered after them. The outgoing
@@ -123,29 +135,114 @@ public:
     if(with_apexes)
       out_apex.reserve(room);
     pair_face_halfedges(nv, tri, with_apexes);
-    // the face halfedges without a twin, in increasing order: border halfedge h0 + i is the twin of the i-th
-    auto without_twin = [&](std::size_t h) { return twin[h] == invalid_index; };
-    const Ordered_compaction borders(twin.size(), without_twin);
-    Index_array border_twins(borders.size());
-    borders.visit([&](std::size_t h, std::size_t rank, bool border) {
-      if(border)
-        border_twins[rank] = static_cast<Index>(h);
-    });
-    const std::size_t border_halfedges = border_twins.size();
-    const std::size_t h0 = 3 * nf, nh = h0 + border_halfedges;
-    source.resize(nh);
-    target.resize(nh);
-    parallel_for_blocks(h0, [&](std::size_t first, std::size_t last) {
-      for(std::size_t h = first; h < last; ++h)
-      {
-        source[h] = tri[h];
-        target[h] = tri[next_in_face(static_cast<Index>(h))];
-      }
-    });
-    if(border_halfedges > 0)                         // closed mesh: the rows are the face halfedges
-      add_border_halfedges(border_twins, with_apexes);
+    add_source_target_and_borders(tri, with_apexes);
+  }
+
+  // The halfedges of the face array `tri` of nv rows that one level of half-edge collapses
+  // made from the face array of `before` (decompose(): M_{k+1} from M_k): the same arrays as
+  // build(nv, tri, with_apexes), the twins derived from those of `before` instead of matched
+  // in the rings again. `before` needs its twins. The collapses follow the selection's rule
+  // (take_greedily()): sources pairwise non-adjacent, targets even and distinct, no two
+  // collapses crossed, the link condition on every collapse; so every face holds at most one
+  // odd vertex. The twin of a halfedge of a kept face is its twin before, or, when that lies
+  // in a removed face, the twin of the removed face's third edge (the two edges the collapse
+  // merges). No directed edge is repeated after the collapses when none was before (so
+  // build() would pair the same twins): a repeated edge would hold a renamed halfedge, o -> v renamed e -> v beside a face's e -> v (or
+  // v -> o beside v -> e): v is a common neighbour of o and e, so the apex of a removed face
+  // on the edge o e (the link condition), which held o -> v or e -> v (v -> o or v -> e)
+  // already; two renamed halfedges give a shared target or two crossed collapses. Why: matching
+  // every level's twins in the rings again was 7 % of a decomposition (dragon, one thread);
+  // this pass reads the faces in order. `before` and `c` are freed once read. Falls back to
+  // build() (and returns false) when `before` repeats a directed edge or when the collapses
+  // do not follow the rule (a removed face entered through its collapsed edge, or next to
+  // another across its third edge); returns true otherwise.
+  // \throws std::invalid_argument as build()
+  bool build_after_collapses(Triangle_halfedges&& before, Collapsed_faces&& c, std::size_t nv,
+                             const std::vector<Index>& tri, bool with_apexes = false)
+  {
+    const std::size_t nf_before = before.nf;
+    if(before.repeated_directed_edge || before.twin.size() < 3 * nf_before)
+    {
+      before = Triangle_halfedges();
+      c = Collapsed_faces();
+      build(nv, tri, with_apexes);
+      return false;
+    }
+    const std::size_t room = halfedges_with_border_room(tri.size());
+    for(Index_array* v : {&out, &out_target})
+      v->reserve(room);
+    if(with_apexes)
+      out_apex.reserve(room);
+    n = nv;
+    nf = tri.size() / 3;
+    twin.reserve(room);
+    twin.resize(tri.size());
     m_sorted_first = std::vector<Index>();
     m_sorted = std::vector<std::pair<Index, Index> >();
+    list_face_halfedges_by_source(n, tri, with_apexes, out_offsets, out, out_target, out_apex);
+    const Index h0_before = static_cast<Index>(3 * nf_before);
+    std::atomic<bool> failed(false);
+    parallel_for_blocks(nf_before, [&](std::size_t first, std::size_t last) {
+      // raw pointers: the writes to twin would otherwise make the compiler reload every array
+      const Index* const after = c.face_after.data();
+      const Index* const twin_before = before.twin.data();
+      Index* const twins = twin.data();
+      CGAL_assertion_code(const Index* const faces = tri.data();)
+      bool bad = false;
+      for(std::size_t f = first; f < last; ++f)
+      {
+        const Index af = after[f];
+        if(Collapsed_faces::is_removed(af))
+          continue;
+        for(Index corner = 0; corner < 3; ++corner)
+        {
+          // across a removed face (o, e, x), the twin of its third edge. It is never entered
+          // through its collapsed edge o e (no face holds two odd vertices), and the twin of
+          // its third edge lies in a kept face or on the border: beyond e x, a face (x, e, o')
+          // removed by o' -> x would cross o -> e, by o' -> e share its target, and o' = x
+          // would neighbour o; beyond x o, a removed face holds o and e, the other face on o e
+          // with the same apex x, which the link condition refuses
+          Index t = twin_before[3 * f + corner];
+          Index at = t < h0_before ? after[t / 3] : invalid_index;
+          if(t < h0_before && Collapsed_faces::is_removed(at))
+          {
+            const Index r = t / 3, collapsed = Collapsed_faces::collapsed_corner(at), entered = t % 3;
+            t = entered == collapsed ? h0_before : twin_before[3 * r + (3 - entered - collapsed)];
+            at = t < h0_before ? after[t / 3] : invalid_index;
+            if(entered == collapsed || (t < h0_before && Collapsed_faces::is_removed(at)))
+            {
+              bad = true;                                  // (the whole is built again below)
+              t = h0_before;
+            }
+          }
+          const Index g = 3 * af + corner, into = t < h0_before ? 3 * at + t % 3 : invalid_index;
+          CGAL_assertion(into == invalid_index || (faces[into] == faces[next_in_face(g)] && faces[next_in_face(into)] == faces[g]));
+          twins[g] = into;
+        }
+      }
+      if(bad)
+        failed.store(true, std::memory_order_relaxed);
+    }, 4096);
+    // freed before the ends and the border halfedges are added: the memory of this build
+    // peaks no higher than build()'s
+    before = Triangle_halfedges();
+    c = Collapsed_faces();
+    if(failed.load())
+    {
+      build(nv, tri, with_apexes);
+      return false;
+    }
+    repeated_directed_edge = false;
+    add_source_target_and_borders(tri, with_apexes);
+    return true;
+  }
+
+  // frees all but the twins (what build_after_collapses() reads of the halfedges before)
+  void keep_twins_only()
+  {
+    for(Index_array* v : {&source, &target, &out, &out_target, &out_apex})
+      Index_array().swap(*v);
+    std::vector<Index>().swap(out_offsets);
   }
 
   // The twins alone, for a mesh's halfedges to be linked (build_triangle_mesh()): twin[h] for
@@ -182,6 +279,35 @@ private:
   // those of most meshes are then appended without a reallocation that copies the arrays
   // (capacity that is never written costs address space, not memory).
   static std::size_t halfedges_with_border_room(std::size_t h0) { return h0 + h0 / 16 + 1024; }
+
+  // The end of build() and build_after_collapses(), once the face halfedges are listed and
+  // paired: the border halfedges numbered, the ends of every halfedge, the border rows.
+  void add_source_target_and_borders(const std::vector<Index>& tri, bool with_apexes)
+  {
+    // the face halfedges without a twin, in increasing order: border halfedge h0 + i is the twin of the i-th
+    auto without_twin = [&](std::size_t h) { return twin[h] == invalid_index; };
+    const Ordered_compaction borders(twin.size(), without_twin);
+    Index_array border_twins(borders.size());
+    borders.visit([&](std::size_t h, std::size_t rank, bool border) {
+      if(border)
+        border_twins[rank] = static_cast<Index>(h);
+    });
+    const std::size_t border_halfedges = border_twins.size();
+    const std::size_t h0 = 3 * nf, nh = h0 + border_halfedges;
+    source.resize(nh);
+    target.resize(nh);
+    parallel_for_blocks(h0, [&](std::size_t first, std::size_t last) {
+      for(std::size_t h = first; h < last; ++h)
+      {
+        source[h] = tri[h];
+        target[h] = tri[next_in_face(static_cast<Index>(h))];
+      }
+    });
+    if(border_halfedges > 0)                         // closed mesh: the rows are the face halfedges
+      add_border_halfedges(border_twins, with_apexes);
+    m_sorted_first = std::vector<Index>();
+    m_sorted = std::vector<std::pair<Index, Index> >();
+  }
 
   // The first steps of build() and build_twins(): the outgoing face halfedges listed by
   // source, the long rings sorted, the face halfedges paired (twin, invalid_index for a border
