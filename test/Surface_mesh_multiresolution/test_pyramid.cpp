@@ -1213,6 +1213,20 @@ void check_same_halfedges(const SMR::internal::Triangle_halfedges& a, const SMR:
   CHECK(a.out_apex == b.out_apex);
 }
 
+// build_after_collapses() that falls back to build(): false returned, build()'s arrays
+void check_built_again(const std::vector<SMR::internal::Index>& tri, std::size_t n, const SMR::internal::Index_array& face_after,
+                       const std::vector<SMR::internal::Index>& after, std::size_t n_after, bool repeated_before)
+{
+  SMR::internal::Triangle_halfedges before, derived, built;
+  before.build(n, tri, true);
+  REQUIRE(before.repeated_directed_edge == repeated_before);
+  SMR::internal::Collapsed_faces change;
+  change.face_after = face_after;
+  CHECK(!derived.build_after_collapses(std::move(before), std::move(change), n_after, after, true));
+  built.build(n_after, after, true);
+  check_same_halfedges(derived, built);
+}
+
 TEST_CASE("the halfedges of a level derived from the level before and its collapses are those built from its faces", "[pyramid][halfedges]")
 {
   typedef SMR::internal::Index Index;
@@ -1312,42 +1326,15 @@ TEST_CASE("the halfedges of a level derived from the level before and its collap
   }
   // a level before with a repeated directed edge (0 -> 1 in two faces): no derivation, the
   // halfedges are built from the faces (first come, first served)
-  {
-    const std::vector<Index> tri = {0, 1, 2, 1, 0, 3, 0, 1, 4};
-    SMR::internal::Triangle_halfedges before, derived, built;
-    before.build(5, tri, true);
-    REQUIRE(before.repeated_directed_edge);
-    SMR::internal::Collapsed_faces change;
-    change.face_after = {0, 1, 2};                           // nothing removed
-    CHECK(!derived.build_after_collapses(std::move(before), std::move(change), 5, tri, true));
-    built.build(5, tri, true);
-    check_same_halfedges(derived, built);
-  }
-  // collapses against the rule (a removed face entered through its collapsed edge 0 -> 1):
-  // built from the faces
-  {
-    const std::vector<Index> tri = {0, 1, 2, 1, 0, 3}, after = {0, 1, 2};
-    SMR::internal::Triangle_halfedges before, derived, built;
-    before.build(4, tri, true);
-    SMR::internal::Collapsed_faces change;
-    change.face_after = {SMR::internal::Collapsed_faces::removed_face + 0, 0};   // face 0 removed, its collapsed halfedge at corner 0
-    CHECK(!derived.build_after_collapses(std::move(before), std::move(change), 3, after, true));
-    built.build(3, after, true);
-    check_same_halfedges(derived, built);
-  }
+  const Index removed = SMR::internal::Collapsed_faces::removed_face;
+  check_built_again({0, 1, 2, 1, 0, 3, 0, 1, 4}, 5, {0, 1, 2}, {0, 1, 2, 1, 0, 3, 0, 1, 4}, 5, true);
+  // collapses against the rule, built from the faces: a removed face entered through its
+  // collapsed edge (face 0, its collapsed halfedge 0 -> 1 at corner 0)
+  check_built_again({0, 1, 2, 1, 0, 3}, 4, {removed + 0, 0}, {0, 1, 2}, 3, false);
   // two crossed collapses 0 -> 1 and 3 -> 2 (2 next to 0, 1 next to 3), which the selection
-  // refuses: the removed faces (0, 1, 2) and (2, 1, 3) share their third edges; built from the faces
-  {
-    const std::vector<Index> tri = {0, 1, 2, 2, 1, 3, 0, 2, 4, 3, 1, 5}, after = {0, 1, 2, 1, 0, 3};
-    SMR::internal::Triangle_halfedges before, derived, built;
-    before.build(6, tri, true);
-    REQUIRE(!before.repeated_directed_edge);
-    SMR::internal::Collapsed_faces change;                   // collapsed halfedges 0 -> 1 (corner 0), 3 -> 2 (corner 2)
-    change.face_after = {SMR::internal::Collapsed_faces::removed_face + 0, SMR::internal::Collapsed_faces::removed_face + 2, 0, 1};
-    CHECK(!derived.build_after_collapses(std::move(before), std::move(change), 4, after, true));
-    built.build(4, after, true);
-    check_same_halfedges(derived, built);
-  }
+  // refuses: the removed faces (0, 1, 2) and (2, 1, 3) share their third edges (collapsed
+  // halfedges at corners 0 and 2)
+  check_built_again({0, 1, 2, 2, 1, 3, 0, 2, 4, 3, 1, 5}, 6, {removed + 0, removed + 2, 0, 1}, {0, 1, 2, 1, 0, 3}, 4, false);
 }
 
 TEST_CASE("the corners listed by source in parallel ranges are those of the sequential counting sort", "[pyramid][halfedges]")
