@@ -111,11 +111,12 @@ private:
     // with apexes: the selection's tests read them; after the first level, derived from the
     // halfedges of the level before and its collapses
     if(k == 0)
+    {
       m_builder.set_connectivity(rows(), m_faces, true);
+      m_cost.initialize(m_builder.connectivity(), xyz());   // on M_0, rows are the input's vertex numbers
+    }
     else
       m_builder.set_connectivity_after_collapses(rows(), m_faces, std::move(m_halfedges_before), std::move(m_collapsed));
-    if(k == 0)
-      m_cost.initialize(m_builder.connectivity(), xyz());   // on M_0, rows are the input's vertex numbers
     m_cost.begin_level(m_rows_to_vertices, xyz());
   }
 

@@ -12,6 +12,8 @@
 #include <CGAL/Surface_mesh_multiresolution/internal/helpers.h>
 #include <CGAL/Surface_mesh_multiresolution/internal/parallel.h>
 
+#include <CGAL/assertions.h>
+
 #include <algorithm>
 #include <atomic>
 #include <cstring>
@@ -147,12 +149,15 @@ public:
   // odd vertex. The twin of a halfedge of a kept face is its twin before, or, when that lies
   // in a removed face, the twin of the removed face's third edge (the two edges the collapse
   // merges). No directed edge is repeated after the collapses when none was before (so
-  // build() would pair the same twins): a repeated edge would hold a renamed halfedge, o -> v renamed e -> v beside a face's e -> v (or
-  // v -> o beside v -> e): v is a common neighbour of o and e, so the apex of a removed face
-  // on the edge o e (the link condition), which held o -> v or e -> v (v -> o or v -> e)
-  // already; two renamed halfedges give a shared target or two crossed collapses. Why: matching
-  // every level's twins in the rings again was 7 % of a decomposition (dragon, one thread);
-  // this pass reads the faces in order. `before` and `c` are freed once read. Falls back to
+  // build() would pair the same twins): a repeated edge would hold a renamed halfedge, o -> v
+  // renamed e -> v beside a face's e -> v (or v -> o beside v -> e): v is a common neighbour
+  // of o and e, so the apex of a removed face on the edge o e (the link condition), which held
+  // o -> v or e -> v (v -> o or v -> e) already; two renamed halfedges give a shared target or
+  // two crossed collapses. Why: matching every level's twins in the rings again was 7 % of a
+  // decomposition (dragon, one thread); this pass reads the faces in order, and with the twins
+  // kept to the next level glibc keeps its heap from level to level instead of trimming it and
+  // faulting fresh pages (the dragon 1.00-1.05 -> 0.73-0.82 s, its page faults 198k -> 112k;
+  // design notes). `before` and `c` are freed once read. Falls back to
   // build() (and returns false) when `before` repeats a directed edge or when the collapses
   // do not follow the rule (a removed face entered through its collapsed edge, or next to
   // another across its third edge); returns true otherwise.
