@@ -162,7 +162,20 @@ private:
   void analyse_channels(Pyramid_level& level)
   {
     // the weights are not kept: reconstruct() computes them again from the same positions
-    // (Level_weights), which costs less than holding them
+    // (Level_weights), which costs less than holding them. The 1-ring schemes compute each
+    // row as it is applied, to every channel (analyse_level_with_rows_once()); SOD's rows are
+    // assembled first (sequentially), then applied.
+    if(m_scheme != Relaxation_scheme::SECOND_ORDER_DIFFERENCE)
+    {
+      m_builder.prepare_rows(m_scheme, xyz().data());
+      auto compute_rows = [&](const auto& apply_row) {
+        m_builder.apply_rows(m_scheme, xyz().data(), nullptr, nullptr, rows(), apply_row);
+        m_builder.release_weight_data();
+      };
+      analyse_level_with_rows_once(level, compute_rows, m_is_odd, m_pyr.dimensions(), m_values, level.details,
+                                   level.corrections);
+      return;
+    }
     m_builder.build(m_scheme, xyz().data(), nullptr, m_weights, m_rules);
     m_builder.release_weight_data();       // before the analysis' arrays: the peak memory is level 0's
     const std::size_t nc = m_values.size();

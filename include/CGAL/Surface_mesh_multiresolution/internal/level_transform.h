@@ -72,16 +72,12 @@ void values_of_next_level(const Pyramid_level& lev, std::size_t dim, const std::
     copy_values(f.data() + std::size_t(lev.even_rows[j]) * dim, dim, next.data() + j * dim);
 }
 
-// Eq. 5: the details and corrections of one channel (f: rows of M_k) with the weights w
-inline void analyse_level(const Pyramid_level& lev, const Sparse_weights& w, std::size_t dim, const std::vector<double>& f,
-                          std::vector<double>& details, Corrections& corrections)
+// Eq. 5, last step: the details of one channel (f: rows of M_k) from its predictions, and the
+// corrections where prediction + detail misses f
+inline void details_from_predictions(const std::vector<double>& f, const double* prediction, std::vector<double>& details,
+                                     Corrections& corrections)
 {
-  const std::size_t n = lev.number_of_rows() * dim;
-  std::vector<double> state(f);
-  Uninitialized_vector<double> prediction(n);   // every row is odd or even: all written
-  odd_values_from_targets(lev, dim, state.data());
-  w.apply_row_list(state.data(), prediction.data(), dim, lev.odd_rows.data(), lev.odd_rows.size());
-  w.apply_row_list(f.data(), prediction.data(), dim, lev.even_rows.data(), lev.even_rows.size());
+  const std::size_t n = f.size();
   // writes the detail of value k and tells whether prediction + detail misses f[k] (then a
   // correction is kept); the corrections listed in increasing k, in parallel
   details.resize(n);
@@ -100,6 +96,55 @@ inline void analyse_level(const Pyramid_level& lev, const Sparse_weights& w, std
     if(correction)
       corrections[rank] = std::make_pair(static_cast<Index>(k), f[k] - (usable_prediction(prediction[k]) + details[k]));
   });
+}
+
+// Eq. 5: the details and corrections of one channel (f: rows of M_k) with the weights w
+inline void analyse_level(const Pyramid_level& lev, const Sparse_weights& w, std::size_t dim, const std::vector<double>& f,
+                          std::vector<double>& details, Corrections& corrections)
+{
+  const std::size_t n = lev.number_of_rows() * dim;
+  std::vector<double> state(f);
+  Uninitialized_vector<double> prediction(n);   // every row is odd or even: all written
+  odd_values_from_targets(lev, dim, state.data());
+  w.apply_row_list(state.data(), prediction.data(), dim, lev.odd_rows.data(), lev.odd_rows.size());
+  w.apply_row_list(f.data(), prediction.data(), dim, lev.even_rows.data(), lev.even_rows.size());
+  details_from_predictions(f, prediction.data(), details, corrections);
+}
+
+// Eq. 5 for every channel of a level at once, with weights computed row by row and not stored:
+// compute_rows(apply_row) hands every row i of M_k once to apply_row(i, columns, values,
+// length) (Relaxation_weight_builder::apply_rows()), in any order and in parallel, and each row
+// is applied to every channel there, with the sums of Sparse_weights::apply_row_list()
+// (Sparse_weights::combine()), so the details and corrections of analyse_level(), bit for bit.
+// An analysis applies each row once (odd rows to the state, even rows to the values: no row
+// reads a prediction), so storing the rows only wrote and read them again (12 bytes per entry).
+// is_odd: odd_row_flags() of the level; f[c]: channel c (dims[c] per row) in the rows of M_k.
+template <typename ComputeRows>
+void analyse_level_with_rows_once(const Pyramid_level& lev, const ComputeRows& compute_rows, const std::vector<unsigned char>& is_odd,
+                                  const std::vector<std::size_t>& dims, const std::vector<std::vector<double> >& f,
+                                  std::vector<std::vector<double> >& details, std::vector<Corrections>& corrections)
+{
+  const std::size_t nc = f.size();
+  std::vector<std::vector<double> > state(f);
+  std::vector<Uninitialized_vector<double> > prediction(nc);
+  for(std::size_t c = 0; c < nc; ++c)
+  {
+    odd_values_from_targets(lev, dims[c], state[c].data());
+    prediction[c].resize(f[c].size());          // every row is odd or even: all written
+  }
+  compute_rows([&](std::size_t i, const Index* col, const double* val, std::size_t length) {
+    for(std::size_t c = 0; c < nc; ++c)
+      Sparse_weights::combine(col, val, length, is_odd[i] ? state[c].data() : f[c].data(), prediction[c].data() + i * dims[c],
+                              dims[c]);
+  });
+  std::vector<std::vector<double> >().swap(state);
+  details.resize(nc);
+  corrections.resize(nc);
+  for(std::size_t c = 0; c < nc; ++c)
+  {
+    details_from_predictions(f[c], prediction[c].data(), details[c], corrections[c]);
+    Uninitialized_vector<double>().swap(prediction[c]);
+  }
 }
 
 inline void odd_row_flags(const Pyramid_level& lev, std::vector<unsigned char>& is_odd)
