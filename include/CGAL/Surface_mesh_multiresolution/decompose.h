@@ -170,7 +170,7 @@ private:
       m_builder.prepare_rows(m_scheme, xyz().data());
       auto compute_rows = [&](const auto& apply_row) {
         m_builder.apply_rows(m_scheme, xyz().data(), nullptr, nullptr, rows(), apply_row);
-        m_builder.release_weight_data();
+        m_builder.release_weight_data();   // here, before the details are allocated: the peak memory is level 0's
       };
       analyse_level_with_rows_once(level, compute_rows, m_is_odd, m_pyr.dimensions(), m_values, level.details,
                                    level.corrections);
