@@ -18,6 +18,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <functional>
 #include <map>
 #include <numeric>
@@ -894,6 +895,49 @@ TEST_CASE("the index-based plane quadrics give SMS's Garland-Heckbert cost, bord
     CHECK(largest > 1e-4);                      // the noise makes the costs non-trivial
     CHECK((shape == 0) == (border > 0));        // the grid's border quadrics were compared too
   }
+}
+
+TEST_CASE("candidate keys are the same with and without the cost model's prefetch hint", "[pyramid][cost]")
+{
+  typedef SMR::internal::Index Index;
+  // a cost with the hint (as decompose() hands the plane quadrics over) counts its calls and
+  // checks that they name rows; the keys must be those of the same cost without it
+  struct Hinted_cost
+  {
+    SMR::internal::Optional<double> operator()(Index o, Index e) const { return quadrics.cost(o, e); }
+    void prefetch_target(Index e) const
+    {
+      quadrics.prefetch_target(e);
+      ++*hints;
+      if(e >= rows) ++*bad_hints;
+    }
+    const SMR::internal::Plane_quadrics& quadrics;
+    std::size_t rows;
+    std::atomic<std::size_t>* hints;
+    std::atomic<std::size_t>* bad_hints;
+  };
+  CGAL::Random rng(5);
+  Mesh m = smr_test::icosphere<Mesh>(4);                     // 2,562 vertices: several blocks of candidates
+  for(auto v : vertices(m))
+    m.point(v) = m.point(v) + Vector_3(rng.get_double(-.01, .01), rng.get_double(-.01, .01), rng.get_double(-.01, .01));
+  SMR::internal::Indexed_mesh<Mesh> im;
+  SMR::internal::build_indexed_mesh(m, get(CGAL::vertex_index, m), im);
+  std::vector<double> xyz;
+  SMR::internal::read_coordinates(im.vertices, get(CGAL::vertex_point, m), smr_test::Kernel(), xyz);
+  SMR::internal::Triangle_halfedges th;
+  th.build(im.number_of_vertices(), im.triangles, true);
+  SMR::internal::Plane_quadrics quadrics;
+  quadrics.initialize(th, xyz);
+  const std::vector<unsigned char> on_border(th.n, 0);
+  const SMR::internal::Candidate_key key(static_cast<Index>(th.source.size()));
+  std::atomic<std::size_t> hints(0), bad_hints(0);
+  const Hinted_cost hinted{quadrics, th.n, &hints, &bad_hints};
+  const auto with_hint = SMR::internal::candidate_keys(th, hinted, on_border, key);
+  const auto without = SMR::internal::candidate_keys(th, [&](Index o, Index e) { return quadrics.cost(o, e); }, on_border, key);
+  CHECK(std::vector<std::uint64_t>(with_hint.begin(), with_hint.end()) == std::vector<std::uint64_t>(without.begin(), without.end()));
+  CHECK(hints.load() > 0);                                   // the hint was taken
+  CHECK(hints.load() <= th.source.size());                   // at most one per candidate
+  CHECK(bad_hints.load() == 0);
 }
 
 namespace {

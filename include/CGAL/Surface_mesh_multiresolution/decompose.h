@@ -37,6 +37,16 @@ namespace CGAL {
 namespace Surface_mesh_multiresolution {
 namespace internal {
 
+// The cost of moving row o onto row e, with the model's hint that such a cost will be read
+// soon where it has one (prefetch_cost_operands())
+template <typename CostModel>
+struct Cost_of_rows
+{
+  Optional<double> operator()(Index o, Index e) const { return model.cost(o, e); }
+  void prefetch_target(Index e) const { prefetch_cost_operands(model, e, 0); }
+  const CostModel& model;
+};
+
 // The decomposition as a driver over named steps (in the manner of SMS's collect(); loop();):
 // this class holds the state that goes from one level to the next, all of it in the rows of
 // the current level M_k (its vertices in increasing input number): the input number of every
@@ -122,7 +132,7 @@ private:
 
   void select(std::size_t budget)
   {
-    select_collapses(m_builder.connectivity(), xyz().data(), [&](Index o, Index e) { return m_cost.cost(o, e); }, budget,
+    select_collapses(m_builder.connectivity(), xyz().data(), Cost_of_rows<CostModel>{m_cost}, budget,
                      m_on_border, m_locked, m_source_of_target, m_accepted);
     // in increasing o (the sources are distinct): an ordered compaction of the rows, not a sort
     m_target_of.assign(rows(), invalid_index);

@@ -46,19 +46,26 @@ public:
   void initialize(const Triangle_halfedges& th, const std::vector<double>& xyz)
   {
     m_xyz = xyz.data();
-    m_q.resize(size * th.n);                           // each row zeroed by its own task below
+    // The plane (n, -n.p) of every face first, once per face (in parallel): each of a face's
+    // three corners computed it before, with its square root and three divisions (a tenth of
+    // the dragon's decomposition went to this function). 32 bytes per face, freed on return.
+    Uninitialized_vector<double> planes(4 * th.nf);
+    parallel_for_blocks(th.nf, [&](std::size_t first, std::size_t last) {
+      for(std::size_t f = first; f < last; ++f)
+        plane_of_face(th, static_cast<Index>(3 * f), planes.data() + 4 * f);
+    });
+    m_q.resize(size * th.n);                           // each row written whole by its own task below
     // Each vertex adds the quadrics of its faces and of the border edges at it in the order
     // of a loop over the faces (a face's plane, then the border edges of its halfedges h0,
     // h0 + 1, h0 + 2 as they come): the sums of that sequential loop, bit for bit, in parallel
-    // over the vertices (their corners are listed in face order); each face's plane is
-    // computed by each of its three corners.
+    // over the vertices (their corners are listed in face order), summed in a local quadric
+    // (the same additions in the same order) and stored once.
     const Index h0 = static_cast<Index>(3 * th.nf);
     parallel_for_blocks(th.n, [&](std::size_t first, std::size_t last) {
-      double face_quadric[size], edge_quadric[size];
+      double sum[size], face_quadric[size], edge_quadric[size];
       for(std::size_t v = first; v < last; ++v)
       {
-        const Index row = static_cast<Index>(v);
-        std::fill(m_q.data() + size * v, m_q.data() + size * (v + 1), 0.);
+        std::fill(sum, sum + size, 0.);
         for(Index k = th.out_offsets[v]; k < th.out_offsets[v + 1]; ++k)
         {
           const Index h = th.out[k];                       // v -> a in its face
@@ -66,15 +73,16 @@ public:
             continue;                                      // a border halfedge: no face
           const Index into = Triangle_halfedges::prev_in_face(h);   // b -> v in the same face
           const bool border_out = !th.has_face(th.twin[h]), border_into = !th.has_face(th.twin[into]);
-          plane_of_face(th, h - h % 3, face_quadric);
+          outer(planes.data() + 4 * std::size_t(h / 3), face_quadric);
           if(h % 3 != 0 && border_into)                    // the face loop meets `into` before h
-            add(row, plane_of_border_edge(th, into, edge_quadric), discontinuity_multiplier);
-          add(row, face_quadric, 1.);
+            add(sum, plane_of_border_edge(th, into, edge_quadric), discontinuity_multiplier);
+          add(sum, face_quadric);
           if(border_out)
-            add(row, plane_of_border_edge(th, h, edge_quadric), discontinuity_multiplier);
+            add(sum, plane_of_border_edge(th, h, edge_quadric), discontinuity_multiplier);
           if(h % 3 == 0 && border_into)                    // ... or after it (h is the face's first halfedge)
-            add(row, plane_of_border_edge(th, into, edge_quadric), discontinuity_multiplier);
+            add(sum, plane_of_border_edge(th, into, edge_quadric), discontinuity_multiplier);
         }
+        copy_values(sum, size, m_q.data() + size * v);
       }
     });
   }
@@ -92,6 +100,17 @@ public:
     for(std::size_t i = 0; i < size; ++i)
       s[i] = a[i] + b[i];
     return Optional<double>(evaluate(s, x));
+  }
+
+  // a hint that cost(., e) will be read soon (candidate_keys()): the cache lines of Q_e (80
+  // bytes at a multiple of 16: always two lines) and of p_e (24 bytes: one or two)
+  void prefetch_target(Index e) const
+  {
+    const char* q = reinterpret_cast<const char*>(quadric(e));
+    prefetch(q);
+    prefetch(q + 64);
+    prefetch(point(e));
+    prefetch(point(e) + 2);
   }
 
   void collapse(Index o, Index e)
@@ -133,17 +152,16 @@ public:
 private:
   const double* point(Index v) const { return m_xyz + 3 * std::size_t(v); }
 
-  // the quadric of the plane of the face whose first halfedge is h0; CGAL takes
-  // p = target(h), q = target(next(h)), r = source(h) of the face's halfedge
-  void plane_of_face(const Triangle_halfedges& th, Index h0, double* out) const
+  // the plane (n, -n.p) of the face whose first halfedge is h0 (n: its unit normal); CGAL
+  // takes p = target(h), q = target(next(h)), r = source(h) of the face's halfedge
+  void plane_of_face(const Triangle_halfedges& th, Index h0, double* plane) const
   {
     const double* p = point(th.target[h0]);
     const double* q = point(th.target[h0 + 1]);
     const double* r = point(th.source[h0]);
-    double n[3];
-    cross_of_differences(q, r, p, n);
-    normalize(n);
-    outer(n, p, out);
+    cross_of_differences(q, r, p, plane);
+    normalize(plane);
+    plane[3] = -(plane[0] * p[0] + plane[1] * p[1] + plane[2] * p[2]);
   }
 
   // the quadric of the plane through the border edge source(h) -> target(h) (a face halfedge
@@ -158,7 +176,8 @@ private:
     for(int c = 0; c < 3; ++c) edge[c] = ep[c] - er[c];
     cross(edge, fn, en);
     normalize(en);
-    outer(en, ep, out);
+    const double plane[4] = {en[0], en[1], en[2], -(en[0] * ep[0] + en[1] * ep[1] + en[2] * ep[2])};
+    outer(plane, out);
     return out;
   }
 
@@ -170,21 +189,25 @@ private:
       for(int c = 0; c < 3; ++c) n[c] /= l;
   }
 
-  // the quadric of the plane with normal n through x: (n, -n.x)(n, -n.x)^T
-  static void outer(const double* n, const double* x, double* out)
+  // the quadric of the plane r = (n, -n.x) (n: its unit normal, x: a point of it): r r^T
+  static void outer(const double* r, double* out)
   {
-    const double r[4] = {n[0], n[1], n[2], -(n[0] * x[0] + n[1] * x[1] + n[2] * x[2])};
     std::size_t k = 0;
     for(int i = 0; i < 4; ++i)
       for(int j = i; j < 4; ++j)
         out[k++] = r[i] * r[j];
   }
 
-  void add(Index v, const double* quadric, double factor)
+  static void add(double* sum, const double* quadric)
   {
-    double* q = m_q.data() + size * std::size_t(v);
     for(std::size_t i = 0; i < size; ++i)
-      q[i] += factor * quadric[i];
+      sum[i] += quadric[i];
+  }
+
+  static void add(double* sum, const double* quadric, double factor)
+  {
+    for(std::size_t i = 0; i < size; ++i)
+      sum[i] += factor * quadric[i];
   }
 
   const double* m_xyz = nullptr;  // 3 per row

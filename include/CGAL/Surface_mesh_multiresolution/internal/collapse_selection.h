@@ -552,6 +552,16 @@ double candidate_cost(const Triangle_halfedges& th, const CostOfRows& cost, cons
   return candidate_cost(th, cost, on_border, h, th.source[h], th.target[h]);
 }
 
+// A hint that cost(o, e) will be read soon, for cost models that have one
+// (Plane_quadrics::prefetch_target()); none for the others.
+template <typename CostOfRows>
+auto prefetch_cost_operands(const CostOfRows& cost, Index e, int) -> decltype(cost.prefetch_target(e), void())
+{
+  cost.prefetch_target(e);
+}
+template <typename CostOfRows>
+void prefetch_cost_operands(const CostOfRows&, Index, long) {}
+
 // the key of a refused candidate: none (its cost bits would be a NaN's)
 constexpr std::uint64_t refused_candidate = ~std::uint64_t(0);
 
@@ -657,16 +667,23 @@ inline void keys_above(Key_array& c, const Candidate_key& key, std::uint64_t ref
 // of the vertices' lists of outgoing halfedges, `refused_candidate` for those that would move a border
 // vertex off the border and those the cost model refuses. Computed in parallel (TBB), vertex
 // by vertex (the quadric and position of o are read once for its 1-ring, those of its
-// neighbours are near in memory), each into its own slot.
+// neighbours are near in memory), each into its own slot. The operands of the cost of the
+// candidate `cost_prefetch_distance` places ahead are prefetched: on the dragon the costs
+// waited on the loads of Q_e and p_e (46 % of their samples), one after the other.
+constexpr Index cost_prefetch_distance = 16;
+
 template <typename CostOfRows>
 Key_array candidate_keys(const Triangle_halfedges& th, const CostOfRows& cost,
                          const std::vector<unsigned char>& on_border, const Candidate_key& key)
 {
   Key_array candidates(th.source.size());
   parallel_for_blocks(th.n, [&](std::size_t first, std::size_t last) {
+    const Index end = th.out_offsets[last];
     for(std::size_t o = first; o < last; ++o)
       for(Index k = th.out_offsets[o]; k < th.out_offsets[o + 1]; ++k)
       {
+        if(k + cost_prefetch_distance < end)
+          prefetch_cost_operands(cost, th.out_target[k + cost_prefetch_distance], 0);
         const Index h = th.out[k];
         const double c = candidate_cost(th, cost, on_border, h, static_cast<Index>(o), th.out_target[k]);
         candidates[k] = std::isnan(c) ? refused_candidate : key(c, h);
