@@ -897,6 +897,26 @@ TEST_CASE("the index-based plane quadrics give SMS's Garland-Heckbert cost, bord
   }
 }
 
+namespace {
+// the input of a decomposition as its first level sees it: rows, positions, halfedges with
+// apexes and the plane quadrics
+struct Input_quadrics
+{
+  explicit Input_quadrics(const Mesh& m)
+  {
+    SMR::internal::build_indexed_mesh(m, get(CGAL::vertex_index, m), im);
+    SMR::internal::read_coordinates(im.vertices, get(CGAL::vertex_point, m), smr_test::Kernel(), xyz);
+    th.build(im.number_of_vertices(), im.triangles, true);
+    quadrics.initialize(th, xyz);
+  }
+  Input_quadrics(const Input_quadrics&) = delete;   // the quadrics point into xyz
+  SMR::internal::Indexed_mesh<Mesh> im;
+  std::vector<double> xyz;
+  SMR::internal::Triangle_halfedges th;
+  SMR::internal::Plane_quadrics quadrics;
+};
+} // namespace
+
 TEST_CASE("candidate keys are the same with and without the cost model's prefetch hint", "[pyramid][cost]")
 {
   typedef SMR::internal::Index Index;
@@ -920,14 +940,9 @@ TEST_CASE("candidate keys are the same with and without the cost model's prefetc
   Mesh m = smr_test::icosphere<Mesh>(4);                     // 2,562 vertices: several blocks of candidates
   for(auto v : vertices(m))
     m.point(v) = m.point(v) + Vector_3(rng.get_double(-.01, .01), rng.get_double(-.01, .01), rng.get_double(-.01, .01));
-  SMR::internal::Indexed_mesh<Mesh> im;
-  SMR::internal::build_indexed_mesh(m, get(CGAL::vertex_index, m), im);
-  std::vector<double> xyz;
-  SMR::internal::read_coordinates(im.vertices, get(CGAL::vertex_point, m), smr_test::Kernel(), xyz);
-  SMR::internal::Triangle_halfedges th;
-  th.build(im.number_of_vertices(), im.triangles, true);
-  SMR::internal::Plane_quadrics quadrics;
-  quadrics.initialize(th, xyz);
+  const Input_quadrics in(m);
+  const SMR::internal::Triangle_halfedges& th = in.th;
+  const SMR::internal::Plane_quadrics& quadrics = in.quadrics;
   const std::vector<unsigned char> on_border(th.n, 0);
   const SMR::internal::Candidate_key key(static_cast<Index>(th.source.size()));
   std::atomic<std::size_t> hints(0), bad_hints(0);
@@ -1435,15 +1450,10 @@ TEST_CASE("the look-ahead greedy selection and its parallel rounds take the coll
       m.point(v) = m.point(v) + Vector_3(rng.get_double(-.01, .01), rng.get_double(-.01, .01), rng.get_double(-.01, .01));
   for(const Mesh& m : meshes)
   {
-    SMR::internal::Indexed_mesh<Mesh> im;
-    SMR::internal::build_indexed_mesh(m, get(CGAL::vertex_index, m), im);
-    std::vector<double> xyz;
-    SMR::internal::read_coordinates(im.vertices, get(CGAL::vertex_point, m), smr_test::Kernel(), xyz);
-    SMR::internal::Triangle_halfedges th;
-    th.build(im.number_of_vertices(), im.triangles, true);
-    SMR::internal::Plane_quadrics quadrics;
-    quadrics.initialize(th, xyz);
-    auto cost = [&](Index o, Index e) { return quadrics.cost(o, e); };
+    const Input_quadrics in(m);
+    const SMR::internal::Triangle_halfedges& th = in.th;
+    const std::vector<double>& xyz = in.xyz;
+    auto cost = [&](Index o, Index e) { return in.quadrics.cost(o, e); };
     // the loop with look-ahead, and the parallel rounds with windows of 1, 7, 64 and all candidates
     for(const std::size_t window : {SMR::internal::sequential_selection, std::size_t(1), std::size_t(7), std::size_t(64),
                                     std::size_t(1) << 30})
