@@ -76,7 +76,7 @@ public:
           outer(planes.data() + 4 * std::size_t(h / 3), face_quadric);
           if(h % 3 != 0 && border_into)                    // the face loop meets `into` before h
             add(sum, plane_of_border_edge(th, into, edge_quadric), discontinuity_multiplier);
-          add(sum, face_quadric);
+          add(sum, face_quadric, 1.);
           if(border_out)
             add(sum, plane_of_border_edge(th, h, edge_quadric), discontinuity_multiplier);
           if(h % 3 == 0 && border_into)                    // ... or after it (h is the face's first halfedge)
@@ -161,7 +161,7 @@ private:
     const double* r = point(th.source[h0]);
     cross_of_differences(q, r, p, plane);
     normalize(plane);
-    plane[3] = -(plane[0] * p[0] + plane[1] * p[1] + plane[2] * p[2]);
+    set_offset(plane, p);
   }
 
   // the quadric of the plane through the border edge source(h) -> target(h) (a face halfedge
@@ -171,13 +171,13 @@ private:
     const double* ep = point(th.target[h]);
     const double* eq = point(th.target[Triangle_halfedges::next_in_face(h)]);
     const double* er = point(th.source[h]);
-    double fn[3], edge[3], en[3];
+    double fn[3], edge[3], en[4];
     cross_of_differences(eq, er, ep, fn);
     for(int c = 0; c < 3; ++c) edge[c] = ep[c] - er[c];
     cross(edge, fn, en);
     normalize(en);
-    const double plane[4] = {en[0], en[1], en[2], -(en[0] * ep[0] + en[1] * ep[1] + en[2] * ep[2])};
-    outer(plane, out);
+    set_offset(en, ep);
+    outer(en, out);
     return out;
   }
 
@@ -189,6 +189,12 @@ private:
       for(int c = 0; c < 3; ++c) n[c] /= l;
   }
 
+  // plane[3] = -n.x for the normal n = plane[0..2] and a point x of the plane
+  static void set_offset(double* plane, const double* x)
+  {
+    plane[3] = -(plane[0] * x[0] + plane[1] * x[1] + plane[2] * x[2]);
+  }
+
   // the quadric of the plane r = (n, -n.x) (n: its unit normal, x: a point of it): r r^T
   static void outer(const double* r, double* out)
   {
@@ -196,12 +202,6 @@ private:
     for(int i = 0; i < 4; ++i)
       for(int j = i; j < 4; ++j)
         out[k++] = r[i] * r[j];
-  }
-
-  static void add(double* sum, const double* quadric)
-  {
-    for(std::size_t i = 0; i < size; ++i)
-      sum[i] += quadric[i];
   }
 
   static void add(double* sum, const double* quadric, double factor)
