@@ -100,7 +100,7 @@ private:
     else
       m_visitor.on_level_started(k, rows());
     connectivity(k);
-    select(budget);
+    select(budget, k);
     if(m_accepted.empty())
       return false;
     levels().emplace_back();
@@ -130,10 +130,26 @@ private:
     m_cost.begin_level(m_rows_to_vertices, xyz());
   }
 
-  void select(std::size_t budget)
+  void select(std::size_t budget, std::size_t k)
   {
-    select_collapses(m_builder.connectivity(), xyz().data(), Cost_of_rows<CostModel>{m_cost}, budget,
-                     m_on_border, m_locked, m_source_of_target, m_accepted);
+    const Triangle_halfedges& th = m_builder.connectivity();
+    m_rows_prepared = false;
+    if(m_scheme != Relaxation_scheme::SECOND_ORDER_DIFFERENCE && k >= first_level_prepared_beside)
+    {
+      // The weights' corner pairs and cotangents depend on M_k only: they are computed beside
+      // the taking of the candidates, sequential below four threads. Allocated here, in this
+      // thread, once the candidates are sorted (in the memory their keys freed: allocated
+      // before them, the levels' page faults doubled)
+      select_collapses(th, xyz().data(), Cost_of_rows<CostModel>{m_cost}, budget, m_on_border, m_locked,
+                       m_source_of_target, m_accepted, 0, [&](const auto& take) {
+                         m_builder.allocate_paired_rows(m_scheme);
+                         run_beside(take, [&] { m_builder.fill_paired_rows(m_scheme, xyz().data()); });
+                       });
+      m_rows_prepared = true;
+    }
+    else
+      select_collapses(th, xyz().data(), Cost_of_rows<CostModel>{m_cost}, budget, m_on_border, m_locked,
+                       m_source_of_target, m_accepted);
     // in increasing o (the sources are distinct): an ordered compaction of the rows, not a sort
     m_target_of.assign(rows(), invalid_index);
     for(const Collapse& c : m_accepted)
@@ -145,11 +161,11 @@ private:
       if(source)
         m_accepted[rank] = Collapse{static_cast<Index>(r), m_target_of[r]};
     });
-    if(m_scheme != Relaxation_scheme::SECOND_ORDER_DIFFERENCE)   // SOD's hinges read the twins
-    {
+    if(m_scheme == Relaxation_scheme::SECOND_ORDER_DIFFERENCE)   // SOD's hinges read the twins
+      return;
+    if(!m_rows_prepared)
       m_builder.pair_corners_from_halfedges();
-      m_builder.keep_outgoing_lists_only(true);     // the twins too: the next level's halfedges read them
-    }
+    m_builder.keep_outgoing_lists_only(true);       // the twins too: the next level's halfedges read them
   }
 
   void record_rows_and_targets(Pyramid_level& level)
@@ -177,7 +193,8 @@ private:
     // assembled first (sequentially), then applied.
     if(m_scheme != Relaxation_scheme::SECOND_ORDER_DIFFERENCE)
     {
-      m_builder.prepare_rows(m_scheme, xyz().data());
+      if(!m_rows_prepared)
+        m_builder.prepare_rows(m_scheme, xyz().data());
       auto compute_rows = [&](const auto& apply_row) {
         m_builder.apply_rows(m_scheme, xyz().data(), nullptr, nullptr, rows(), apply_row);
         m_builder.release_weight_data();   // here, before the details are allocated: the peak memory is level 0's
@@ -246,6 +263,8 @@ private:
   Sparse_weights m_weights;                     // lambda^k of the current level
   std::vector<Relaxation_row_rule> m_rules;
   std::vector<unsigned char> m_on_border, m_locked, m_is_odd;
+  bool m_rows_prepared = false;                 // whether select() prepared the 1-ring rows (prepare_rows())
+  static constexpr std::size_t first_level_prepared_beside = 1;
   Index_array m_source_of_target;               // selection scratch, kept across the levels
   std::vector<Collapse> m_accepted;
   std::vector<Index> m_target_of;               // the target of each accepted collapse's source, else invalid_index

@@ -744,12 +744,20 @@ void sort_candidate_rest(const Triangle_halfedges& th, const CostOfRows& cost, c
 // threads and parallel rounds (take_greedily_in_rounds(), windows of the level's n / 64
 // candidates, at least 4096) from four on; `sequential_selection` forces the loop, any other
 // value the rounds with windows of that many candidates. The accepted collapses are the same.
+// `run_taking(take)` calls take(), the loop or the rounds once the candidates are sorted: a
+// caller may run other work beside it (the loop is sequential); Run_in_place just calls it.
 constexpr std::size_t sequential_selection = ~std::size_t(0);
 
-template <typename CostOfRows>
+struct Run_in_place
+{
+  template <typename Take>
+  void operator()(const Take& take) const { take(); }
+};
+
+template <typename CostOfRows, typename RunTaking = Run_in_place>
 void select_collapses(const Triangle_halfedges& th, const double* xyz, const CostOfRows& cost, std::size_t budget,
                       std::vector<unsigned char>& on_border, std::vector<unsigned char>& locked, Index_array& source_of_target,
-                      std::vector<Collapse>& accepted, std::size_t window = 0)
+                      std::vector<Collapse>& accepted, std::size_t window = 0, const RunTaking& run_taking = RunTaking())
 {
   if(source_of_target.size() < th.n)
     source_of_target.resize(th.n);                        // the first level's size: the next levels reuse it
@@ -772,14 +780,15 @@ void select_collapses(const Triangle_halfedges& th, const double* xyz, const Cos
   if(window == 0)
     window = available_threads() >= 4 ? (std::max)(std::size_t(4096), th.n / 64) : sequential_selection;
   if(window == sequential_selection)
-  {
     locked.assign(th.n, 0);
-    take_greedily(th, xyz, candidates, sorted, all, sort_rest, key, budget, on_border, locked, source_of_target, accepted, th.n,
-                  th.n / 16 + 1);
-  }
-  else
-    take_greedily_in_rounds(th, xyz, candidates, sorted, all, sort_rest, key, budget, on_border, source_of_target, accepted, th.n,
-                            th.n / 16 + 1, window);
+  run_taking([&] {
+    if(window == sequential_selection)
+      take_greedily(th, xyz, candidates, sorted, all, sort_rest, key, budget, on_border, locked, source_of_target, accepted,
+                    th.n, th.n / 16 + 1);
+    else
+      take_greedily_in_rounds(th, xyz, candidates, sorted, all, sort_rest, key, budget, on_border, source_of_target, accepted,
+                              th.n, th.n / 16 + 1, window);
+  });
 }
 
 } // namespace internal

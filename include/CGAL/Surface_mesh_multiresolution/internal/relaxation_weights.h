@@ -143,18 +143,27 @@ public:
     for(Index_array* v : {&m_mesh.source, &m_mesh.target, &m_mesh.out_target, &m_mesh.out_apex})
       Index_array().swap(*v);             // not read from here on: freed before the pairs are made
     corners();
-    const Triangle_halfedges& th = m_mesh;
-    parallel_for_blocks(m_n, [&](std::size_t first, std::size_t last) {
-      for(std::size_t i = first; i < last; ++i)
-        for(Index k = m_offs[i], e = corners_end(i); k < e; ++k)
-        {
-          const Index h = m_outp[k], into = th.twin[h];   // i -> a, a -> i
-          m_corner_twin[k] = th.has_face(into) ? Triangle_halfedges::next_in_face(into) : invalid_index;
-          const Index from = th.twin[Triangle_halfedges::prev_in_face(h)];   // i -> b, twin of the corner's b -> i
-          m_apex_matched[k] = th.has_face(from) ? 1 : 0;
-        }
-    });
-    m_paired = true;
+    pair_corners();
+  }
+
+  // pair_corners_from_halfedges() and prepare_rows() without freeing any halfedge, in two
+  // steps: allocate_paired_rows() allocates the pairs and the cotangents (in the calling
+  // thread: see run_beside()), then fill_paired_rows() fills them, reading only the lists of
+  // outgoing halfedges, the twins, the face array and xyz, which a decomposition's selection
+  // only reads too, so that it runs beside it. apply_rows() may follow at once.
+  void allocate_paired_rows(Relaxation_scheme scheme)
+  {
+    CGAL_precondition(scheme != Relaxation_scheme::SECOND_ORDER_DIFFERENCE);
+    halfedges();
+    corners();
+    if(scheme != Relaxation_scheme::UNIFORM)
+      m_cotangent.resize(m_triangles->size());
+  }
+  void fill_paired_rows(Relaxation_scheme scheme, const double* xyz)
+  {
+    pair_corners();
+    if(scheme != Relaxation_scheme::UNIFORM)
+      compute_cotangents(xyz);
   }
 
   // frees all of the halfedges but the vertices' lists of outgoing halfedges (out_offsets,
@@ -298,6 +307,23 @@ public:
   }
 
 private:
+  // the pairs of pair_corners_from_halfedges(), on the corners listed by corners()
+  void pair_corners()
+  {
+    const Triangle_halfedges& th = m_mesh;
+    parallel_for_blocks(m_n, [&](std::size_t first, std::size_t last) {
+      for(std::size_t i = first; i < last; ++i)
+        for(Index k = m_offs[i], e = corners_end(i); k < e; ++k)
+        {
+          const Index h = m_outp[k], into = th.twin[h];   // i -> a, a -> i
+          m_corner_twin[k] = th.has_face(into) ? Triangle_halfedges::next_in_face(into) : invalid_index;
+          const Index from = th.twin[Triangle_halfedges::prev_in_face(h)];   // i -> b, twin of the corner's b -> i
+          m_apex_matched[k] = th.has_face(from) ? 1 : 0;
+        }
+    });
+    m_paired = true;
+  }
+
   void halfedges()
   {
     if(!m_has_halfedges)
