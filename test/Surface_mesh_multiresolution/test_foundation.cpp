@@ -288,3 +288,41 @@ TEST_CASE("large blocks freed inside a Block_pool_scope are reused, trimmed and 
   outlives = Doubles();
   CHECK(pool.kept_bytes() == 0);
 }
+
+TEST_CASE("a large request that no kept block holds grows one; small arrays do not cut down blocks of 64 MiB", "[memory]")
+{
+  typedef SMR::internal::Block_pool Pool;
+  typedef SMR::internal::Uninitialized_vector<double> Doubles;
+  Pool& pool = Pool::instance();
+  const std::size_t big = Pool::default_kept_bytes / sizeof(double);   // 32 MiB of doubles
+  REQUIRE(pool.kept_bytes() == 0);
+  {
+    const SMR::internal::Block_pool_scope scope;
+    {
+      Doubles a(big), b(big), c(big);
+      a[0] = b[0] = c[0] = 1.;
+    }
+    REQUIRE(pool.kept_bytes() == 3 * big * sizeof(double));
+    const std::size_t reuses = pool.reuses();
+    {
+      Doubles d(2 * big);                          // none holds it: one block grows, one goes back
+      CHECK(pool.reuses() == reuses + 1);
+      CHECK(Pool::size(d.data()) == 2 * big * sizeof(double));
+      CHECK(pool.kept_bytes() == big * sizeof(double));   // held in all: 3 blocks' bytes, as before
+      d[2 * big - 1] = 2.;                         // the grown block is usable to its end
+      CHECK(d[2 * big - 1] == 2.);
+    }
+    CHECK(pool.kept_bytes() == 3 * big * sizeof(double));
+    {
+      // a 4 MiB array takes the 32 MiB block (cut down), never the 64 MiB one
+      Doubles e(big / 8), f(big / 8);
+      CHECK(Pool::size(e.data()) == big / 8 * sizeof(double));
+      CHECK(Pool::size(f.data()) == big / 8 * sizeof(double));
+      CHECK(pool.kept_bytes() == 2 * big * sizeof(double));
+      Doubles g(5 * big / 4);                      // a large one takes it, cut down to its size
+      CHECK(Pool::size(g.data()) == 5 * big / 4 * sizeof(double));
+      CHECK(pool.kept_bytes() == 0);
+    }
+  }
+  CHECK(pool.kept_bytes() == 0);
+}

@@ -29,14 +29,21 @@ namespace internal {
 // fresh pages again: the 3.1M-vertex subdivided horse took 2.0M page faults to decompose, 8 GB
 // of first touches for a peak of 0.9 GB, and 12.8 s of system time on two threads (6 µs per
 // fault on the reference machine). While at least one Block_pool_scope exists, such blocks
-// (at least `default_kept_bytes`), freed through Pooled_allocator, are kept here; a request of
-// at least `default_reused_bytes` takes the smallest kept block that holds it, its tail given back
-// (realloc) when it is more than a quarter too large. A request of 32 MiB or more that no kept
-// block holds first gives back kept blocks of as many bytes (the largest first), so that the
-// memory held stays that of the system allocator alone; everything kept is given back when the
-// last scope ends. Measured and the variants tried: design notes, "Large blocks kept from
-// level to level" (3.1M vertices 24.2-25.1 -> 21.7-22.5 s, peak +0.9 %; the dragon unchanged,
-// its arrays being smaller).
+// (at least `default_kept_bytes`), freed through Pooled_allocator, are kept here. A request of
+// 32 MiB or more takes the smallest kept block that holds it, its tail given back (realloc)
+// when it is more than a quarter too large; where none holds it, the largest kept block grows
+// to it (realloc, which glibc does with mremap: only the added pages are touched fresh) and
+// kept blocks of as many bytes as it grew go back (the largest first), so that the memory held
+// stays about that of the system allocator alone. A request from `default_reused_bytes` to
+// 32 MiB takes the smallest kept block that holds it too, but one of 64 MiB or more only if it
+// fills three quarters of it: cut down, such a block would be lost to the next level's large
+// arrays, which then touch fresh pages (kept blocks under 64 MiB are cut down: kept whole
+// until the end, the dragon's 35 MiB of level-0 quadrics raised its peak by as much).
+// Everything kept is given back when the last scope ends. Measured and the variants tried:
+// design notes, "Large blocks kept from level to level" (3.1M vertices 24.2-25.1 -> 21.7-22.5
+// s, peak +0.9 %; the dragon unchanged, its arrays being smaller) and "Kept blocks grown, and
+// not cut down by small arrays" (3.1M vertices: decomposition faults -29 %, 25.7-30.8 ->
+// 21.1-23.2 s, peak +1.7 %).
 // Why by hand: std::pmr's pools keep every block of every size class until released, and a
 // process-wide setting of the allocator (mallopt, GLIBC_TUNABLES) is the user's to choose, not a
 // library's. Every block comes from std::malloc with its size in a header, so that any block can
@@ -67,24 +74,42 @@ public:
       if(m_scopes > 0 && !m_kept.empty())
       {
         const auto it = m_kept.lower_bound(bytes);
-        if(it != m_kept.end())
+        const bool large = bytes >= m_keep_from;
+        if(it != m_kept.end() && (large || it->first < 2 * m_keep_from || it->first - bytes <= it->first / 4))
         {
+          // the smallest kept block that holds it, the tail given back when it is more than a
+          // quarter too large; for a request under m_keep_from (an array the system allocator
+          // would serve from its heap), not a block of twice m_keep_from or more that it would
+          // cut down (see above)
           void* block = it->second;
           const std::size_t kept = it->first;
           m_kept.erase(it);
           ++m_reuses;
-          return kept - bytes > kept / 4 ? shrink(block, bytes) : block;   // much larger: the tail goes back
+          return kept - bytes > kept / 4 ? shrink(block, bytes) : block;
         }
-        // none holds it: a block the system would map anew; kept blocks of as many bytes go
-        // back first (the largest first), so that what the process holds does not grow
-        if(bytes >= m_keep_from)
-          for(std::size_t released = 0; released < bytes && !m_kept.empty();)
+        if(large && it == m_kept.end())
+        {
+          // none holds it: the largest kept block grows to it (realloc: mremap, its pages
+          // kept; the new ones only are touched fresh), and kept blocks of as many bytes as
+          // it grew go back (the largest first), so that what the process holds does not grow
+          const auto last = std::prev(m_kept.end());
+          void* block = last->second;
+          const std::size_t kept = last->first;
+          m_kept.erase(last);
+          char* raw = static_cast<char*>(std::realloc(start(block), bytes + header));
+          if(raw == nullptr)
           {
-            const auto last = std::prev(m_kept.end());
-            released += last->first;
-            std::free(start(last->second));
-            m_kept.erase(last);
+            std::free(start(block));                // could not grow: a fresh block below
+            release(bytes);
           }
+          else
+          {
+            *reinterpret_cast<std::size_t*>(raw) = bytes;
+            ++m_reuses;
+            release(bytes - kept);
+            return raw + header;
+          }
+        }
       }
     }
     char* raw = static_cast<char*>(std::malloc(bytes + header));
@@ -164,7 +189,7 @@ public:
 private:
   Block_pool() = default;
   // the first `bytes` of a block, the rest given back (realloc shrinks in place: the pages
-  // kept are those already touched)
+  // kept are those already touched); the block as it was if realloc fails
   static void* shrink(void* block, std::size_t bytes)
   {
     char* raw = static_cast<char*>(std::realloc(start(block), bytes + header));
@@ -174,6 +199,18 @@ private:
     return raw + header;
   }
   static void* start(void* block) { return static_cast<char*>(block) - header; }
+
+  // gives back kept blocks of at least `bytes` bytes in all, the largest first (m_mutex held)
+  void release(std::size_t bytes)
+  {
+    for(std::size_t released = 0; released < bytes && !m_kept.empty();)
+    {
+      const auto last = std::prev(m_kept.end());
+      released += last->first;
+      std::free(start(last->second));
+      m_kept.erase(last);
+    }
+  }
 
   std::mutex m_mutex;
   std::size_t m_scopes = 0, m_reuses = 0;

@@ -155,9 +155,9 @@ public:
   {
     CGAL_precondition(scheme != Relaxation_scheme::SECOND_ORDER_DIFFERENCE);
     halfedges();
-    corners();
     if(scheme != Relaxation_scheme::UNIFORM)
-      m_cotangent.resize(m_triangles->size());
+      m_cotangent.resize(m_triangles->size());   // first: the largest, it takes the block the candidate keys freed
+    corners();
   }
   void fill_paired_rows(Relaxation_scheme scheme, const double* xyz)
   {
