@@ -321,6 +321,12 @@ TEST_CASE("the downsampling removes a sixteenth of the vertices or more per leve
   CHECK(floor.number_of_vertices(floor.number_of_levels()) == 1000);
   CHECK(floor.number_of_vertices(floor.number_of_levels() - 1) > 1000);
   check_exact_round_trip(m, floor);
+  // the coarsest mesh's arrays, reduced level by level in place, hold its size only
+  const std::size_t top = floor.number_of_levels();
+  CHECK(floor.coarse_faces().size() == 3 * floor.number_of_faces(top));
+  CHECK(floor.coarse_faces().capacity() < 2 * floor.coarse_faces().size());
+  CHECK(floor.coarse_values()[0].size() == 3 * floor.number_of_vertices(top));
+  CHECK(floor.coarse_values()[0].capacity() < 2 * floor.coarse_values()[0].size());
 }
 
 TEST_CASE("tiny and degenerate inputs", "[pyramid][edge]")

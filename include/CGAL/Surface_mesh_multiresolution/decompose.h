@@ -220,33 +220,29 @@ private:
   {
     m_cost.collapse_all(m_accepted);
     m_cost.end_level(m_is_odd);
-    std::vector<Index> next_row(rows(), invalid_index);
+    // (the rows' arrays are reduced in place and this one is kept: see keep_values_of_next_level())
+    std::vector<Index>& next_row = m_target_of;
+    next_row.assign(rows(), invalid_index);
     for(std::size_t j = 0; j < level.even_rows.size(); ++j)
       next_row[level.even_rows[j]] = static_cast<Index>(j);
     parallel_for_blocks(m_faces.size(), [&](std::size_t first, std::size_t last) {
       for(std::size_t i = first; i < last; ++i)
         m_faces[i] = next_row[m_faces[i]];
     });
-    std::vector<double> next;
     for(std::size_t c = 0; c < m_values.size(); ++c)
-    {
-      values_of_next_level(level, m_pyr.dimensions()[c], m_values[c], next);
-      m_values[c].swap(next);
-    }
+      keep_values_of_next_level(level, m_pyr.dimensions()[c], m_values[c]);
     if(m_scaled)
-    {
-      values_of_next_level(level, 3, m_scaled_xyz, next);
-      m_scaled_xyz.swap(next);
-    }
-    std::vector<Index> next_vertices;
-    values_of_next_level(level, 1, m_rows_to_vertices, next_vertices);
-    m_rows_to_vertices.swap(next_vertices);
+      keep_values_of_next_level(level, 3, m_scaled_xyz);
+    keep_values_of_next_level(level, 1, m_rows_to_vertices);
   }
 
   void coarsest_mesh()
   {
     Pyramid_access::coarse_vertices(m_pyr) = m_rows_to_vertices;
+    m_faces.shrink_to_fit();                    // reduced in place from level 0's size
     Pyramid_access::coarse_faces(m_pyr) = std::move(m_faces);
+    for(std::vector<double>& v : m_values)
+      v.shrink_to_fit();                        // reduced in place from level 0's size
     Pyramid_access::coarse_values(m_pyr) = std::move(m_values);
   }
 
@@ -330,7 +326,7 @@ void Decomposition<TriangleMesh, CostModel, Visitor>::collapse_face_array(Pyrami
 }
 
 // the face array of M_{k+1}: the removed faces taken out (order kept), recorded by position
-// (an ordered compaction of the faces, in parallel)
+// (an ordered compaction of the faces: the records in parallel, the kept faces in place)
 template <typename TriangleMesh, typename CostModel, typename Visitor>
 void Decomposition<TriangleMesh, CostModel, Visitor>::take_out_removed_faces(Pyramid_level& level)
 {
@@ -340,7 +336,6 @@ void Decomposition<TriangleMesh, CostModel, Visitor>::take_out_removed_faces(Pyr
   const std::size_t nr = removed_faces.size();
   level.removed_face_positions.resize(nr);
   level.removed_faces.resize(3 * nr);
-  std::vector<Index> kept(3 * (number_of_faces - nr));
   m_collapsed.face_after.resize(number_of_faces);
   removed_faces.visit([&](std::size_t p, std::size_t rank, bool is_removed) {
     const Index* t = m_faces.data() + 3 * p;
@@ -351,12 +346,22 @@ void Decomposition<TriangleMesh, CostModel, Visitor>::take_out_removed_faces(Pyr
       m_collapsed.face_after[p] = Collapsed_faces::removed_face + (m_face_removed[p] - 1u);
     }
     else
-    {
       m_collapsed.face_after[p] = static_cast<Index>(p - rank);
-      copy_values(t, 3, kept.data() + 3 * (p - rank));
-    }
   });
-  m_faces.swap(kept);
+  // the kept faces moved down in place, in order (face p to p - rank <= p: read before it is
+  // written over), the array's capacity kept: a new array per level (zero-filled first) was
+  // mapped and touched anew on large meshes. Sequential: a block moves faces into the block
+  // before it, which may not have read them yet.
+  Index* faces = m_faces.data();
+  std::size_t to = 0;
+  for(std::size_t p = 0; p < number_of_faces; ++p)
+    if(m_face_removed[p] == 0)
+    {
+      if(to != p)
+        copy_values(faces + 3 * p, 3, faces + 3 * to);
+      ++to;
+    }
+  m_faces.resize(3 * to);
 }
 
 // The values of every channel of the input, validated (channel 0: the coordinates)

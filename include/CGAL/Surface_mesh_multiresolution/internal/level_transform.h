@@ -63,6 +63,19 @@ inline void spread_to_level(const Pyramid_level& lev, std::size_t dim, const dou
   odd_values_from_targets(lev, dim, state.data());
 }
 
+// values_of_next_level() in place: f reduced to the rows of M_{k+1}, its capacity kept (the
+// even rows increase, so row j is read where it lies before any row writes there). A new
+// array per level, as large as the level, was mapped and touched anew on large meshes.
+template <typename T>
+void keep_values_of_next_level(const Pyramid_level& lev, std::size_t dim, std::vector<T>& f)
+{
+  T* data = f.data();
+  for(std::size_t j = 0; j < lev.even_rows.size(); ++j)
+    if(std::size_t(lev.even_rows[j]) != j)
+      copy_values(data + std::size_t(lev.even_rows[j]) * dim, dim, data + j * dim);
+  f.resize(lev.even_rows.size() * dim);
+}
+
 // the values of M_{k+1} (rows) from those of M_k: even vertices keep their values
 template <typename T>
 void values_of_next_level(const Pyramid_level& lev, std::size_t dim, const std::vector<T>& f, std::vector<T>& next)
