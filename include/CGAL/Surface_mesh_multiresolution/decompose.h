@@ -102,7 +102,10 @@ private:
     connectivity(k);
     select(budget, k);
     if(m_accepted.empty())
+    {
+      std::vector<std::vector<double> >().swap(m_details);
       return false;
+    }
     levels().emplace_back();
     Pyramid_level& level = levels().back();
     record_rows_and_targets(level);
@@ -133,19 +136,26 @@ private:
   void select(std::size_t budget, std::size_t k)
   {
     const Triangle_halfedges& th = m_builder.connectivity();
-    m_rows_prepared = false;
-    if(m_scheme != Relaxation_scheme::SECOND_ORDER_DIFFERENCE && k >= first_level_prepared_beside)
+    m_predicted = false;
+    if(m_scheme != Relaxation_scheme::SECOND_ORDER_DIFFERENCE && k >= first_level_predicted_beside)
     {
-      // The weights' corner pairs and cotangents depend on M_k only: they are computed beside
-      // the taking of the candidates, sequential below four threads. Allocated here, in this
-      // thread, once the candidates are sorted (in the memory their keys freed: allocated
-      // before them, the levels' page faults doubled)
+      // The weights' corner pairs and cotangents, and the predictions of every channel, depend
+      // on M_k and its values only (predict_with_rows_once()): they are computed beside the
+      // taking of the candidates, which is sequential below four threads (the task's parallel
+      // loops go on on both threads once the taking is done). Allocated here, in this thread,
+      // once the candidates are sorted (in the memory their keys freed: allocated before them,
+      // the levels' page faults doubled)
       select_collapses(th, xyz().data(), Cost_of_rows<CostModel>{m_cost}, budget, m_on_border, m_locked,
                        m_source_of_target, m_accepted, 0, [&](const auto& take) {
                          m_builder.allocate_paired_rows(m_scheme);
-                         run_beside(take, [&] { m_builder.fill_paired_rows(m_scheme, xyz().data()); });
+                         allocate_predictions();
+                         run_beside(take, [&] {
+                           m_builder.fill_paired_rows(m_scheme, xyz().data());
+                           predict();
+                         });
+                         m_builder.release_weight_data();
                        });
-      m_rows_prepared = true;
+      m_predicted = true;
     }
     else
       select_collapses(th, xyz().data(), Cost_of_rows<CostModel>{m_cost}, budget, m_on_border, m_locked,
@@ -163,7 +173,7 @@ private:
     });
     if(m_scheme == Relaxation_scheme::SECOND_ORDER_DIFFERENCE)   // SOD's hinges read the twins
       return;
-    if(!m_rows_prepared)
+    if(!m_predicted)
       m_builder.pair_corners_from_halfedges();
     m_builder.keep_outgoing_lists_only(true);       // the twins too: the next level's halfedges read them
   }
@@ -189,18 +199,19 @@ private:
   {
     // the weights are not kept: reconstruct() computes them again from the same positions
     // (Level_weights), which costs less than holding them. The 1-ring schemes compute each
-    // row as it is applied, to every channel (analyse_level_with_rows_once()); SOD's rows are
-    // assembled first (sequentially), then applied.
+    // row as it is applied, to every channel (predict_with_rows_once()), beside the selection
+    // but on the first level; SOD's rows are assembled first (sequentially), then applied.
     if(m_scheme != Relaxation_scheme::SECOND_ORDER_DIFFERENCE)
     {
-      if(!m_rows_prepared)
+      if(!m_predicted)
+      {
         m_builder.prepare_rows(m_scheme, xyz().data());
-      auto compute_rows = [&](const auto& apply_row) {
-        m_builder.apply_rows(m_scheme, xyz().data(), nullptr, nullptr, rows(), apply_row);
+        allocate_predictions();
+        predict();
         m_builder.release_weight_data();   // here, before the details are allocated: the peak memory is level 0's
-      };
-      analyse_level_with_rows_once(level, compute_rows, m_is_odd, m_pyr.dimensions(), m_values, level.details,
-                                   level.corrections);
+      }
+      level.details = std::move(m_details);
+      details_in_place(m_values, level.details, level.corrections);
       return;
     }
     m_builder.build(m_scheme, xyz().data(), nullptr, m_weights, m_rules);
@@ -211,6 +222,21 @@ private:
     for(std::size_t c = 0; c < nc; ++c)
       analyse_level(level, m_weights, m_pyr.dimensions()[c], m_values[c], level.details[c], level.corrections[c]);
     m_weights = Sparse_weights();
+  }
+
+  // every channel's predictions (predict_with_rows_once()), in the arrays of its details,
+  // allocated in the calling thread (see run_beside())
+  void allocate_predictions()
+  {
+    m_details.resize(m_values.size());
+    for(std::size_t c = 0; c < m_values.size(); ++c)
+      m_details[c].resize(m_values[c].size());
+  }
+  void predict()
+  {
+    predict_with_rows_once([&](const auto& apply_row) {
+      m_builder.apply_rows(m_scheme, xyz().data(), nullptr, nullptr, rows(), apply_row);
+    }, m_pyr.dimensions(), m_values, m_details);
   }
 
   void collapse_face_array(Pyramid_level& level);
@@ -259,8 +285,9 @@ private:
   Sparse_weights m_weights;                     // lambda^k of the current level
   std::vector<Relaxation_row_rule> m_rules;
   std::vector<unsigned char> m_on_border, m_locked, m_is_odd;
-  bool m_rows_prepared = false;                 // whether select() prepared the 1-ring rows (prepare_rows())
-  static constexpr std::size_t first_level_prepared_beside = 1;
+  bool m_predicted = false;                     // whether select() computed the predictions beside the taking
+  static constexpr std::size_t first_level_predicted_beside = 1;
+  std::vector<std::vector<double> > m_details;  // per channel, rows of M_k: the predictions (predict()), then the level's details
   Index_array m_source_of_target;               // selection scratch, kept across the levels
   std::vector<Collapse> m_accepted;
   std::vector<Index> m_target_of;               // the target of each accepted collapse's source, else invalid_index

@@ -85,30 +85,44 @@ void values_of_next_level(const Pyramid_level& lev, std::size_t dim, const std::
     copy_values(f.data() + std::size_t(lev.even_rows[j]) * dim, dim, next.data() + j * dim);
 }
 
-// Eq. 5, last step: the details of one channel (f: rows of M_k) from its predictions, and the
-// corrections where prediction + detail misses f
-inline void details_from_predictions(const std::vector<double>& f, const double* prediction, std::vector<double>& details,
-                                     Corrections& corrections)
+// Eq. 5, last step: the details of one channel (f: rows of M_k) from its predictions
+// (prediction_of(k): the prediction of value k), written to details[k], and the corrections
+// where prediction + detail misses f. prediction_of(k) may read details[k]: that value is read
+// before it is written.
+template <typename PredictionOf>
+void details_and_corrections(const std::vector<double>& f, const PredictionOf& prediction_of, double* details,
+                             Corrections& corrections)
 {
   const std::size_t n = f.size();
-  // writes the detail of value k and tells whether prediction + detail misses f[k] (then a
-  // correction is kept); the corrections listed in increasing k, in parallel
-  details.resize(n);
-  auto needs_correction = [&](std::size_t k) {
-    const double p = usable_prediction(prediction[k]);
-    double d = f[k] - p;
+  // the detail of value k, and whether prediction + detail misses f[k] (then a correction is
+  // kept); the corrections listed in increasing k, in parallel
+  auto detail = [&](std::size_t k, double& p, double& d) {
+    p = usable_prediction(prediction_of(k));
+    d = f[k] - p;
     if(!std::isfinite(d))
       d = -p;
-    details[k] = d;
     const double t = p + d;
     return t != f[k] || std::signbit(t) != std::signbit(f[k]);
   };
+  auto needs_correction = [&](std::size_t k) {
+    double p, d;
+    return detail(k, p, d);
+  };
   const Ordered_compaction corrected(n, needs_correction);
   corrections.resize(corrected.size());
-  corrected.visit([&](std::size_t k, std::size_t rank, bool correction) {
-    if(correction)
-      corrections[rank] = std::make_pair(static_cast<Index>(k), f[k] - (usable_prediction(prediction[k]) + details[k]));
+  corrected.visit([&](std::size_t k, std::size_t rank, bool) {
+    double p, d;
+    if(detail(k, p, d))
+      corrections[rank] = std::make_pair(static_cast<Index>(k), f[k] - (p + d));
+    details[k] = d;
   });
+}
+
+inline void details_from_predictions(const std::vector<double>& f, const double* prediction, std::vector<double>& details,
+                                     Corrections& corrections)
+{
+  details.resize(f.size());
+  details_and_corrections(f, [&](std::size_t k) { return prediction[k]; }, details.data(), corrections);
 }
 
 // Eq. 5: the details and corrections of one channel (f: rows of M_k) with the weights w
@@ -124,39 +138,42 @@ inline void analyse_level(const Pyramid_level& lev, const Sparse_weights& w, std
   details_from_predictions(f, prediction.data(), details, corrections);
 }
 
-// Eq. 5 for every channel of a level at once, with weights computed row by row and not stored:
-// compute_rows(apply_row) hands every row i of M_k once to apply_row(i, columns, values,
-// length) (Relaxation_weight_builder::apply_rows()), in any order and in parallel, and each row
-// is applied to every channel there, with the sums of Sparse_weights::apply_row_list()
-// (Sparse_weights::combine()), so the details and corrections of analyse_level(), bit for bit.
-// An analysis applies each row once (odd rows to the state, even rows to the values: no row
-// reads a prediction), so storing the rows only wrote and read them again (12 bytes per entry).
-// is_odd: odd_row_flags() of the level; f[c]: channel c (dims[c] per row) in the rows of M_k.
+// Eq. 5 for every channel of a level of a 1-ring scheme (curvature, uniform) at once, with
+// weights computed row by row and not stored: compute_rows(apply_row) hands every row i of M_k
+// once to apply_row(i, columns, values, length) (Relaxation_weight_builder::apply_rows()), in
+// any order and in parallel, and each row is applied to every channel there, with the sums of
+// Sparse_weights::apply_row_list() (Sparse_weights::combine()). An analysis applies each row
+// once, so storing the rows only wrote and read them again (12 bytes per entry).
+// Every row is applied to the values f themselves. analyse_level() applies the odd rows to a
+// state whose odd rows hold their targets' values; but an odd row's columns are its 1-ring
+// neighbours (border rows: its border neighbours; never the row itself), all even since no two
+// odd vertices are adjacent, so the state equals f wherever such a row reads it, and the
+// predictions are analyse_level()'s bit for bit. (Not so for SOD, whose rows reach the
+// 2-ring.) The predictions therefore depend on M_k and its values alone, not on the level's
+// selection: the decomposition computes them beside it. f[c]: channel c (dims[c] per row) in
+// the rows of M_k; prediction[c]: f[c].size() values, allocated by the caller, all written
+// (details_in_place() turns them into the details).
 template <typename ComputeRows>
-void analyse_level_with_rows_once(const Pyramid_level& lev, const ComputeRows& compute_rows, const std::vector<unsigned char>& is_odd,
-                                  const std::vector<std::size_t>& dims, const std::vector<std::vector<double> >& f,
-                                  std::vector<std::vector<double> >& details, std::vector<Corrections>& corrections)
+void predict_with_rows_once(const ComputeRows& compute_rows, const std::vector<std::size_t>& dims,
+                            const std::vector<std::vector<double> >& f, std::vector<std::vector<double> >& prediction)
 {
   const std::size_t nc = f.size();
-  std::vector<std::vector<double> > state(f);
-  std::vector<Uninitialized_vector<double> > prediction(nc);
-  for(std::size_t c = 0; c < nc; ++c)
-  {
-    odd_values_from_targets(lev, dims[c], state[c].data());
-    prediction[c].resize(f[c].size());          // every row is odd or even: all written
-  }
   compute_rows([&](std::size_t i, const Index* col, const double* val, std::size_t length) {
     for(std::size_t c = 0; c < nc; ++c)
-      Sparse_weights::combine(col, val, length, is_odd[i] ? state[c].data() : f[c].data(), prediction[c].data() + i * dims[c],
-                              dims[c]);
+      Sparse_weights::combine(col, val, length, f[c].data(), prediction[c].data() + i * dims[c], dims[c]);
   });
-  std::vector<std::vector<double> >().swap(state);
-  details.resize(nc);
-  corrections.resize(nc);
-  for(std::size_t c = 0; c < nc; ++c)
+}
+
+// the details and corrections of every channel, the details written over its predictions
+// (predict_with_rows_once(); no second array of the level's size)
+inline void details_in_place(const std::vector<std::vector<double> >& f, std::vector<std::vector<double> >& details,
+                             std::vector<Corrections>& corrections)
+{
+  corrections.resize(f.size());
+  for(std::size_t c = 0; c < f.size(); ++c)
   {
-    details_from_predictions(f[c], prediction[c].data(), details[c], corrections[c]);
-    Uninitialized_vector<double>().swap(prediction[c]);
+    double* d = details[c].data();
+    details_and_corrections(f[c], [d](std::size_t k) { return d[k]; }, d, corrections[c]);
   }
 }
 
