@@ -823,6 +823,52 @@ TEST_CASE("stored weights are the relaxation operators of the levels and change 
   }
 }
 
+// The decomposition applies every row of a 1-ring scheme to the values themselves, beside the
+// selection (predict_with_rows_once()): an odd row reads only its neighbours, which are even.
+// Eq. 5 as analyse_level() computes it, odd rows applied to the state where the odd vertices
+// hold their targets' values, must give the same details and corrections bit for bit.
+TEST_CASE("every level's details are those of Eq. 5 with the odd rows applied to the state of the collapses", "[pyramid][weights]")
+{
+  Mesh m = smr_test::planar_grid<Mesh>(24, 0.3);   // borders and interior vertices
+  auto temp = m.add_property_map<Mesh::Vertex_index, double>("v:temperature").first;
+  for(auto v : vertices(m))
+    temp[v] = std::sin(7. * m.point(v).x()) * 1e3 - 273.15 * m.point(v).y();
+  for(SMR::Relaxation_scheme scheme : {SMR::Relaxation_scheme::CURVATURE, SMR::Relaxation_scheme::UNIFORM})
+  {
+    INFO("scheme " << int(scheme));
+    SMR::Pyramid<Mesh> pyr = SMR::decompose(m, SMR::parameters::relaxation_scheme(scheme).vertex_attribute_maps(std::make_tuple(temp)));
+    REQUIRE(pyr.number_of_levels() > 3);
+    SMR::store_weights(pyr);
+    const auto input = smr_test::positions_in_order(m);
+    std::size_t corrected = 0;
+    for(std::size_t k = 0; k < pyr.number_of_levels(); ++k)
+    {
+      INFO("level " << k);
+      const auto& lev = pyr.levels()[k];
+      const auto& ids = pyr.vertices(k);
+      std::vector<double> xyz, t;
+      for(std::size_t id : ids)
+      {
+        xyz.insert(xyz.end(), {input[id].x(), input[id].y(), input[id].z()});
+        t.push_back(temp[Mesh::Vertex_index(static_cast<Mesh::size_type>(id))]);
+      }
+      std::size_t c = 0;
+      for(const std::vector<double>* f : {&xyz, &t})
+      {
+        std::vector<double> details;
+        SMR::internal::Corrections corrections;
+        SMR::internal::analyse_level(lev, lev.weights, pyr.channel_dimension(c), *f, details, corrections);
+        REQUIRE(details.size() == lev.details[c].size());
+        CHECK(std::memcmp(details.data(), lev.details[c].data(), details.size() * sizeof(double)) == 0);   // bit for bit
+        CHECK(corrections == lev.corrections[c]);
+        corrected += corrections.size();
+        ++c;
+      }
+    }
+    INFO("corrections: " << corrected);
+  }
+}
+
 TEST_CASE("the cost adapter gives the Garland-Heckbert cost of an independent quadric evaluation", "[pyramid][cost]")
 {
   Mesh m = smr_test::icosphere<Mesh>(2);
