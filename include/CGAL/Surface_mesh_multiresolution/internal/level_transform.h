@@ -46,11 +46,14 @@ inline double usable_prediction(double p) { return std::isfinite(p) ? p : 0.; }
 // v + c for a correction c; a zero correction gives a zero v the sign of c (-0.0 exactly)
 inline double apply_correction(double v, double c) { return c != 0. ? v + c : (v == 0. ? c : v); }
 
-// the odd rows of `state` (rows of M_k) receive the values of their collapse targets
+// the odd rows of `state` (rows of M_k) receive the values of their collapse targets (even
+// rows, not written here: in parallel)
 inline void odd_values_from_targets(const Pyramid_level& lev, std::size_t dim, double* state)
 {
-  for(std::size_t q = 0; q < lev.odd_rows.size(); ++q)
-    copy_values(state + std::size_t(lev.collapse_targets[q]) * dim, dim, state + std::size_t(lev.odd_rows[q]) * dim);
+  parallel_for_blocks(lev.odd_rows.size(), [&](std::size_t first, std::size_t last) {
+    for(std::size_t q = first; q < last; ++q)
+      copy_values(state + std::size_t(lev.collapse_targets[q]) * dim, dim, state + std::size_t(lev.odd_rows[q]) * dim);
+  });
 }
 
 // the state synthesis starts from: the values of M_{k+1} (`coarse`, its rows) at the even rows
@@ -58,8 +61,10 @@ inline void odd_values_from_targets(const Pyramid_level& lev, std::size_t dim, d
 inline void spread_to_level(const Pyramid_level& lev, std::size_t dim, const double* coarse, std::vector<double>& state)
 {
   state.resize(lev.number_of_rows() * dim);
-  for(std::size_t j = 0; j < lev.even_rows.size(); ++j)
-    copy_values(coarse + j * dim, dim, state.data() + std::size_t(lev.even_rows[j]) * dim);
+  parallel_for_blocks(lev.even_rows.size(), [&](std::size_t first, std::size_t last) {
+    for(std::size_t j = first; j < last; ++j)
+      copy_values(coarse + j * dim, dim, state.data() + std::size_t(lev.even_rows[j]) * dim);
+  });
   odd_values_from_targets(lev, dim, state.data());
 }
 
@@ -184,6 +189,17 @@ inline void odd_row_flags(const Pyramid_level& lev, std::vector<unsigned char>& 
     is_odd[r] = 1;
 }
 
+// state = prediction + detail on the rows listed (distinct: in parallel)
+inline void add_details(const std::vector<Index>& rows, std::size_t dim, const std::vector<double>& prediction, const double* d,
+                        std::vector<double>& state)
+{
+  parallel_for_blocks(rows.size(), [&](std::size_t first, std::size_t last) {
+    for(std::size_t q = first; q < last; ++q)
+      for(std::size_t i = std::size_t(rows[q]) * dim; i < (std::size_t(rows[q]) + 1) * dim; ++i)
+        state[i] = usable_prediction(prediction[i]) + d[i];
+  });
+}
+
 // Eq. 6 then Eq. 7 on the rows of M_k with the weights w (Sparse_weights, or any class with
 // its apply_row_list(): Level_weights::Rows_as_applied), each row applied once: `state` comes
 // from spread_to_level(); on return, the values of M_k. is_odd: odd_row_flags() of the level.
@@ -195,17 +211,13 @@ void synthesize_level(const Pyramid_level& lev, const Weights& w, std::size_t di
   prediction.resize(state.size());
   // Eq. 6: odd vertices (corrected before the even vertices read them)
   w.apply_row_list(state.data(), prediction.data(), dim, lev.odd_rows.data(), lev.odd_rows.size());
-  for(Index r : lev.odd_rows)
-    for(std::size_t i = r * dim; i < (r + 1) * dim; ++i)
-      state[i] = usable_prediction(prediction[i]) + d[i];
+  add_details(lev.odd_rows, dim, prediction, d, state);
   for(const auto& cr : corrections)
     if(is_odd[cr.first / dim])
       state[cr.first] = apply_correction(state[cr.first], cr.second);
   // Eq. 7: even vertices, from the intermediate mesh
   w.apply_row_list(state.data(), prediction.data(), dim, lev.even_rows.data(), lev.even_rows.size());
-  for(Index r : lev.even_rows)
-    for(std::size_t i = r * dim; i < (r + 1) * dim; ++i)
-      state[i] = usable_prediction(prediction[i]) + d[i];
+  add_details(lev.even_rows, dim, prediction, d, state);
   for(const auto& cr : corrections)
     if(!is_odd[cr.first / dim])
       state[cr.first] = apply_correction(state[cr.first], cr.second);
