@@ -208,7 +208,7 @@ private:
         m_builder.prepare_rows(m_scheme, xyz().data());
         allocate_predictions();
         predict();
-        m_builder.release_weight_data();   // here, before the details are allocated: the peak memory is level 0's
+        m_builder.release_weight_data();   // as soon as the rows are applied: level 0's memory is near the peak
       }
       level.details = std::move(m_details);
       details_in_place(m_values, level.details, level.corrections);

@@ -215,6 +215,7 @@ public:
       Index_array().swap(*v);
     Uninitialized_vector<unsigned char>().swap(m_apex_matched);
     Index_array().swap(m_mesh.out_target);    // (kept by keep_outgoing_lists_only() for the rows)
+    m_listed = false;
     point_at_corner_ends();
   }
 
@@ -370,10 +371,12 @@ private:
   // ring), else nullptr (then read from the face array)
   void point_at_corner_ends()
   {
-    m_targets = m_listed ? m_out_target.data()
-                         : m_has_halfedges && !m_mesh.out.empty() && m_mesh.out_target.size() == m_mesh.out.size() ? m_mesh.out_target.data() : nullptr;
-    m_apexes = m_listed ? m_out_apex.data()
-                        : m_has_halfedges && !m_mesh.out.empty() && m_mesh.out_apex.size() == m_mesh.out.size() ? m_mesh.out_apex.data() : nullptr;
+    // a list of the halfedges', where it is alive (freed lists are empty)
+    auto alive = [&](const Index_array& list) -> const Index* {
+      return m_has_halfedges && !m_mesh.out.empty() && list.size() == m_mesh.out.size() ? list.data() : nullptr;
+    };
+    m_targets = m_listed ? m_out_target.data() : alive(m_mesh.out_target);
+    m_apexes = m_listed ? m_out_apex.data() : alive(m_mesh.out_apex);
   }
 
   // the vertex after and the vertex before corner k in its face: from the corner lists when
