@@ -178,21 +178,26 @@ private:
     m_builder.keep_outgoing_lists_only(true);       // the twins too: the next level's halfedges read them
   }
 
+  // in parallel: the odd rows are the sources (m_target_of[r] set), the even rows the others
   void record_rows_and_targets(Pyramid_level& level)
   {
     level.vertices = m_rows_to_vertices;
-    level.odd_rows.reserve(m_accepted.size());
-    level.collapse_targets.reserve(m_accepted.size());
-    for(const Collapse& c : m_accepted)
-    {
-      level.odd_rows.push_back(c.o);
-      level.collapse_targets.push_back(c.e);
-    }
-    odd_row_flags(level, m_is_odd);
-    level.even_rows.reserve(rows() - m_accepted.size());
-    for(Index r = 0; r < rows(); ++r)
-      if(!m_is_odd[r])
-        level.even_rows.push_back(r);
+    level.odd_rows.resize(m_accepted.size());
+    level.collapse_targets.resize(m_accepted.size());
+    parallel_for_blocks(m_accepted.size(), [&](std::size_t first, std::size_t last) {
+      for(std::size_t i = first; i < last; ++i)
+      {
+        level.odd_rows[i] = m_accepted[i].o;
+        level.collapse_targets[i] = m_accepted[i].e;
+      }
+    });
+    auto is_even = [&](std::size_t r) { return m_target_of[r] == invalid_index; };
+    const Ordered_compaction even(rows(), is_even);
+    level.even_rows.resize(even.size());
+    even.visit([&](std::size_t r, std::size_t rank, bool kept) {
+      if(kept)
+        level.even_rows[rank] = static_cast<Index>(r);
+    });
   }
 
   void analyse_channels(Pyramid_level& level)
@@ -245,12 +250,14 @@ private:
   void move_to_next_level(const Pyramid_level& level)
   {
     m_cost.collapse_all(m_accepted);
-    m_cost.end_level(m_is_odd);
-    // (the rows' arrays are reduced in place and this one is kept: see keep_values_of_next_level())
+    m_cost.end_level(level.even_rows);
+    // (the rows' arrays are reduced in place and this one is kept: see keep_values_of_next_level());
+    // the faces of M_{k+1} hold even rows only, so the entries of odd rows are not read
     std::vector<Index>& next_row = m_target_of;
-    next_row.assign(rows(), invalid_index);
-    for(std::size_t j = 0; j < level.even_rows.size(); ++j)
-      next_row[level.even_rows[j]] = static_cast<Index>(j);
+    parallel_for_blocks(level.even_rows.size(), [&](std::size_t first, std::size_t last) {
+      for(std::size_t j = first; j < last; ++j)
+        next_row[level.even_rows[j]] = static_cast<Index>(j);
+    });
     parallel_for_blocks(m_faces.size(), [&](std::size_t first, std::size_t last) {
       for(std::size_t i = first; i < last; ++i)
         m_faces[i] = next_row[m_faces[i]];
@@ -284,7 +291,7 @@ private:
   Relaxation_weight_builder m_builder;
   Sparse_weights m_weights;                     // lambda^k of the current level
   std::vector<Relaxation_row_rule> m_rules;
-  std::vector<unsigned char> m_on_border, m_locked, m_is_odd;
+  std::vector<unsigned char> m_on_border, m_locked;
   bool m_predicted = false;                     // whether select() computed the predictions beside the taking
   static constexpr std::size_t first_level_predicted_beside = 1;
   std::vector<std::vector<double> > m_details;  // per channel, rows of M_k: the predictions (predict()), then the level's details

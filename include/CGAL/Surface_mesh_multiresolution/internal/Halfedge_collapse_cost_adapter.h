@@ -159,7 +159,7 @@ public:
 
   void initialize(const Triangle_halfedges&, const std::vector<double>&) {}
   void begin_level(const std::vector<Index>& rows_to_vertices, const std::vector<double>&) { m_rows = &rows_to_vertices; }
-  void end_level(const std::vector<unsigned char>&) {}   // the working copy collapsed as it went
+  void end_level(const std::vector<Index>&) {}   // the working copy collapsed as it went
 
   Optional<double> cost(Index o, Index e) const { return m_adapter->cost(work_halfedge((*m_rows)[o], (*m_rows)[e])); }
 

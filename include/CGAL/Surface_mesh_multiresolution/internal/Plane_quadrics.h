@@ -121,15 +121,10 @@ public:
       b[i] = a[i] + b[i];
   }
 
-  // keeps the quadrics of the rows for which keep(row) holds, in order: the rows of the next
-  // level (the memory follows the level's size; gathered in parallel into a vector of that size)
-  template <typename Keep>
-  void retain(std::size_t rows, const Keep& keep)
+  // keeps the quadrics of the rows `kept` (increasing), in order: the rows of the next level
+  // (the memory follows the level's size; gathered in parallel into a vector of that size)
+  void retain(const std::vector<Index>& kept)
   {
-    std::vector<Index> kept;
-    for(std::size_t r = 0; r < rows; ++r)
-      if(keep(r))
-        kept.push_back(static_cast<Index>(r));
     Uninitialized_vector<double> q(size * kept.size());
     parallel_for_blocks(kept.size(), [&](std::size_t first, std::size_t last) {
       for(std::size_t j = first; j < last; ++j)

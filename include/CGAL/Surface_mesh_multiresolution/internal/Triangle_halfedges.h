@@ -32,10 +32,12 @@ namespace internal {
 // In parallel over ranges of source vertices: each range's task reads the whole face array
 // (a stream) and counts, then writes, only the corners of its sources, in face order, so the
 // lists are those of the sequential sort for any number of tasks (no atomics; with one
-// histogram per task the memory would grow with the tasks times the vertices).
+// histogram per task the memory would grow with the tasks times the vertices). `room`, when
+// given (n entries), leaves room[v] places at the end of v's row, not written here.
 inline void list_face_halfedges_by_source(std::size_t n, const std::vector<Index>& tri, bool with_apexes,
                                           std::vector<Index>& offsets, Index_array& out,
-                                          Index_array& out_target, Index_array& out_apex)
+                                          Index_array& out_target, Index_array& out_apex,
+                                          const std::vector<Index>* room = nullptr)
 {
   const Index h0 = static_cast<Index>(tri.size());
   // a range per thread (at most 8: each reads all corners), one more per 2^15 corners
@@ -53,10 +55,10 @@ inline void list_face_halfedges_by_source(std::size_t n, const std::vector<Index
         ++offsets[tri[h] + 1];
   });
   for(std::size_t i = 0; i < n; ++i)
-    offsets[i + 1] += offsets[i];
-  out.resize(h0);
-  out_target.resize(h0);
-  out_apex.resize(with_apexes ? h0 : 0);
+    offsets[i + 1] += offsets[i] + (room ? (*room)[i] : Index(0));
+  out.resize(offsets[n]);
+  out_target.resize(offsets[n]);
+  out_apex.resize(with_apexes ? offsets[n] : 0);
   std::vector<Index> fill(offsets.begin(), offsets.end() - 1);
   for_ranges([&](Index lo, Index span) {
     for(Index h = 0; h < h0; ++h)
@@ -184,7 +186,6 @@ public:
     twin.resize(tri.size());
     m_sorted_first = std::vector<Index>();
     m_sorted = std::vector<std::pair<Index, Index> >();
-    list_face_halfedges_by_source(n, tri, with_apexes, out_offsets, out, out_target, out_apex);
     const Index h0_before = static_cast<Index>(3 * nf_before);
     std::atomic<bool> failed(false);
     parallel_for_blocks(nf_before, [&](std::size_t first, std::size_t last) {
@@ -228,8 +229,7 @@ public:
       if(bad)
         failed.store(true, std::memory_order_relaxed);
     }, 4096);
-    // freed before the ends and the border halfedges are added: the memory of this build
-    // peaks no higher than build()'s
+    // freed before the rows are listed: the memory of this build peaks no higher than build()'s
     before = Triangle_halfedges();
     c = Collapsed_faces();
     if(failed.load())
@@ -238,7 +238,27 @@ public:
       return false;
     }
     repeated_directed_edge = false;
-    add_source_target_and_borders(tri, with_apexes);
+    // The twins come first, so the border halfedges are known before the rows are listed:
+    // each row is listed with room for its own at its end (build() widens the rows after
+    // the fact, a sequential move of the three row arrays that was a twentieth of a
+    // decomposition on two threads for the dragon, whose holes every level keeps).
+    const Index_array border_twins = face_halfedges_without_twin();
+    std::vector<Index> slot;                         // per row: its border halfedges, then where the next one goes
+    if(!border_twins.empty())
+    {
+      slot.assign(n, 0);
+      for(Index h : border_twins)
+        ++slot[tri[next_in_face(h)]];                // the border halfedge leaves the target of its twin
+    }
+    list_face_halfedges_by_source(n, tri, with_apexes, out_offsets, out, out_target, out_apex,
+                                  border_twins.empty() ? nullptr : &slot);
+    set_ends(tri, border_twins.size());
+    if(!border_twins.empty())
+    {
+      for(std::size_t v = 0; v < n; ++v)
+        slot[v] = out_offsets[v + 1] - slot[v];
+      write_border_halfedges(border_twins, slot, with_apexes);
+    }
     return true;
   }
 
@@ -285,19 +305,34 @@ private:
   // (capacity that is never written costs address space, not memory).
   static std::size_t halfedges_with_border_room(std::size_t h0) { return h0 + h0 / 16 + 1024; }
 
-  // The end of build() and build_after_collapses(), once the face halfedges are listed and
-  // paired: the border halfedges numbered, the ends of every halfedge, the border rows.
+  // The end of build(), once the face halfedges are listed and paired: the border halfedges
+  // numbered, the ends of every halfedge, the border rows.
   void add_source_target_and_borders(const std::vector<Index>& tri, bool with_apexes)
   {
-    // the face halfedges without a twin, in increasing order: border halfedge h0 + i is the twin of the i-th
+    const Index_array border_twins = face_halfedges_without_twin();
+    set_ends(tri, border_twins.size());
+    if(!border_twins.empty())                        // closed mesh: the rows are the face halfedges
+      add_border_halfedges(border_twins, with_apexes);
+    m_sorted_first = std::vector<Index>();
+    m_sorted = std::vector<std::pair<Index, Index> >();
+  }
+
+  // the face halfedges without a twin, in increasing order: border halfedge 3 nf + i is the twin of the i-th
+  Index_array face_halfedges_without_twin() const
+  {
     auto without_twin = [&](std::size_t h) { return twin[h] == invalid_index; };
-    const Ordered_compaction borders(twin.size(), without_twin);
+    const Ordered_compaction borders(3 * nf, without_twin);
     Index_array border_twins(borders.size());
     borders.visit([&](std::size_t h, std::size_t rank, bool border) {
       if(border)
         border_twins[rank] = static_cast<Index>(h);
     });
-    const std::size_t border_halfedges = border_twins.size();
+    return border_twins;
+  }
+
+  // source and target of the face halfedges; the arrays sized for `border_halfedges` more
+  void set_ends(const std::vector<Index>& tri, std::size_t border_halfedges)
+  {
     const std::size_t h0 = 3 * nf, nh = h0 + border_halfedges;
     source.resize(nh);
     target.resize(nh);
@@ -308,10 +343,28 @@ private:
         target[h] = tri[next_in_face(static_cast<Index>(h))];
       }
     });
-    if(border_halfedges > 0)                         // closed mesh: the rows are the face halfedges
-      add_border_halfedges(border_twins, with_apexes);
-    m_sorted_first = std::vector<Index>();
-    m_sorted = std::vector<std::pair<Index, Index> >();
+  }
+
+  // The border halfedges (twins of `border_twins`, in order) numbered after the face
+  // halfedges, each listed in its source's row at slot[source], which it advances.
+  void write_border_halfedges(const Index_array& border_twins, std::vector<Index>& slot, bool with_apexes)
+  {
+    const Index h0 = static_cast<Index>(3 * nf);
+    twin.resize(h0 + border_twins.size());
+    Index g = h0;
+    for(Index h : border_twins)
+    {
+      source[g] = target[h];
+      target[g] = source[h];
+      twin[g] = h;
+      twin[h] = g;
+      const Index k = slot[source[g]]++;
+      out[k] = g;
+      out_target[k] = target[g];
+      if(with_apexes)
+        out_apex[k] = invalid_index;                 // no face
+      ++g;
+    }
   }
 
   // The first steps of build() and build_twins(): the outgoing face halfedges listed by
@@ -486,7 +539,6 @@ private:
   {
     const Index h0 = static_cast<Index>(3 * nf);
     const std::size_t nh = h0 + border_twins.size();
-    twin.resize(nh);
     std::vector<Index> extra(n + 1, 0);
     for(Index h : border_twins)
       ++extra[target[h] + 1];                        // target(h) needs a border halfedge towards source(h)
@@ -501,9 +553,9 @@ private:
     // The rows widened in place: the rows between two vertices with border halfedges move
     // by the same shift (the border halfedges before them), so they move as one block, the
     // last block first (a row only moves towards the end). A fresh widened copy of each
-    // array was a fifth of the page faults of a decomposition. The border places of out and
-    // out_target are written below, those of out_apex become invalid_index.
-    auto widen = [&](Index_array& a, bool fill_border) {
+    // array was a fifth of the page faults of a decomposition. The border places are written
+    // by write_border_halfedges().
+    auto widen = [&](Index_array& a) {
       a.resize(nh);                                  // within the capacity reserved by build(), if the borders fit
       std::size_t last = n;                          // rows [first, last) share the shift
       while(last > 0)
@@ -517,28 +569,15 @@ private:
                        (face_off[last] - face_off[first]) * sizeof(Index));
         last = first;
       }
-      if(fill_border)
-        for(std::size_t i = 0; i < n; ++i)
-          std::fill(a.data() + out_offsets[i] + (face_off[i + 1] - face_off[i]), a.data() + out_offsets[i + 1], invalid_index);
     };
-    widen(out, false);
-    widen(out_target, false);
+    widen(out);
+    widen(out_target);
     if(with_apexes)
-      widen(out_apex, true);
+      widen(out_apex);
     std::vector<Index> fill(n);
     for(std::size_t i = 0; i < n; ++i)
       fill[i] = out_offsets[i] + (face_off[i + 1] - face_off[i]);
-    Index g = h0;
-    for(Index h : border_twins)
-    {
-      source[g] = target[h];
-      target[g] = source[h];
-      twin[g] = h;
-      twin[h] = g;
-      out_target[fill[source[g]]] = target[g];
-      out[fill[source[g]]++] = g;
-      ++g;
-    }
+    write_border_halfedges(border_twins, fill, with_apexes);
   }
 };
 

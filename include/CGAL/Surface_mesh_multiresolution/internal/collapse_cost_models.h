@@ -35,9 +35,9 @@ namespace internal {
 //                                                           moving row o onto row e (empty: refused)
 //   collapse(o, e)                                          an accepted collapse
 //   collapse_all(accepted)                                  a level's accepted collapses ({o, e} each)
-//   end_level(is_odd)                                       one flag per row of M_k: the rows
-//                                                           removed; the next level's rows
-//                                                           are the others, in order
+//   end_level(even_rows)                                    the rows of M_k that stay, in
+//                                                           increasing order: the rows of
+//                                                           the next level
 //
 // - Plane_quadric_collapse_cost: CGAL's default GarlandHeckbert_plane_policies, evaluated on
 //   index arrays (Plane_quadrics.h): no halfedge mesh, quadrics stored by row.
@@ -72,10 +72,7 @@ struct Plane_quadric_collapse_cost : Plane_quadrics
   }
 
   // the quadrics of the rows that stay, by row of the next level
-  void end_level(const std::vector<unsigned char>& is_odd)
-  {
-    retain(is_odd.size(), [&](std::size_t r) { return is_odd[r] == 0; });
-  }
+  void end_level(const std::vector<Index>& even_rows) { retain(even_rows); }
 };
 
 template <typename TriangleMesh, typename GeomTraits, typename GetCost>
