@@ -297,15 +297,41 @@ bool crosses_a_taken_collapse(const Triangle_halfedges& th, Index o, Index e, co
   return false;
 }
 
+// A sorted candidate replaced by the ends of its halfedge, source in the high 32 bits
+// (candidate_ends()): what the greedy loop reads first of every candidate.
+inline std::uint64_t ends_of_candidate(Index o, Index e) { return (std::uint64_t(o) << 32) | e; }
+
+// Replaces the sorted candidate keys from position `first` on by the ends of their halfedges
+// (ends_of_candidate()), in parallel. Why: the greedy loop read the two ends of every candidate
+// at random places of the level's halfedge arrays, one candidate after the other; four fifths
+// of the candidates it scans are refused on these ends alone (a source in a taken star), so
+// those loads were most of its time on large meshes, where it is the decomposition's largest
+// sequential part. Here they are independent loads in parallel blocks, and the loop streams
+// the ends. Only for halfedge structures without a repeated directed edge, where the ends name
+// the halfedge (take_greedily() finds it in the source's ring).
+inline void candidate_ends(const Triangle_halfedges& th, const Candidate_key& key, Key_array& candidates, std::size_t first)
+{
+  CGAL_precondition(!th.repeated_directed_edge);
+  parallel_for_blocks(candidates.size() - first, [&](std::size_t b, std::size_t e) {
+    for(std::size_t i = first + b; i < first + e; ++i)
+    {
+      const Index h = key.halfedge(candidates[i]);
+      candidates[i] = ends_of_candidate(th.source[h], th.target[h]);
+    }
+  });
+}
+
 // The selection loop of select_collapses(): candidates in order, each accepted if the rule
 // above admits it; the first `considered` candidates, more (half as many again
 // each time) while fewer than `minimum` are accepted. `candidates` holds the first `sorted` of
 // the `all` candidates in order; sort_rest() appends the others, in order, when they are needed.
+// `as_ends`: the candidates are given by their ends (candidate_ends()), else as keys.
 template <typename SortRest>
 void take_greedily(const Triangle_halfedges& th, const double* xyz, const Key_array& candidates,
                    std::size_t sorted, std::size_t all, const SortRest& sort_rest, const Candidate_key& key, std::size_t budget,
                    const std::vector<unsigned char>& on_border, std::vector<unsigned char>& locked,
-                   Index_array& source_of_target, std::vector<Collapse>& accepted, std::size_t considered, std::size_t minimum)
+                   Index_array& source_of_target, std::vector<Collapse>& accepted, std::size_t considered, std::size_t minimum,
+                   bool as_ends = false)
 {
   // The candidates come in cost order, that is at random places of the level's arrays: on a
   // mesh larger than the cache each test waits for a dozen misses. Why by hand: the loop keeps
@@ -313,7 +339,8 @@ void take_greedily(const Triangle_halfedges& th, const double* xyz, const Key_ar
   // steps, what their tests read (ring offsets and twin, then the rings, then o's neighbours'
   // positions), so that these misses overlap with the decisions before them. The decisions are
   // those of the plain loop: only cache hints are added, every candidate is checked again when
-  // its turn comes.
+  // its turn comes. Given by their ends, the candidates' halfedges are found in the rings
+  // the window prefetches.
   // `locked`: the Selection_lock flags of every vertex (all 0 on entry); `source_of_target`:
   // at least th.n entries, the source of each taken target (others not read)
   auto may_take = [&](Index o, Index e) { return !(locked[o] & in_a_taken_star) && !(locked[e] & taken_target); };
@@ -339,17 +366,29 @@ void take_greedily(const Triangle_halfedges& th, const double* xyz, const Key_ar
     {
       if(scan + gather_ahead < nc)
       {
-        const Index later = key.halfedge(candidates[scan + gather_ahead]);
-        prefetch(th.source.data() + later);
-        prefetch(th.target.data() + later);
+        const std::uint64_t later = candidates[scan + gather_ahead];
+        if(as_ends)
+        {
+          prefetch(locked.data() + (later >> 32));
+          prefetch(locked.data() + (later & 0xffffffffu));
+        }
+        else
+        {
+          prefetch(th.source.data() + key.halfedge(later));
+          prefetch(th.target.data() + key.halfedge(later));
+        }
       }
-      const Index h = key.halfedge(candidates[scan++]), o = th.source[h], e = th.target[h];
+      const std::uint64_t c = candidates[scan++];
+      const Index h = as_ends ? invalid_index : key.halfedge(c);
+      const Index o = as_ends ? static_cast<Index>(c >> 32) : th.source[h];
+      const Index e = as_ends ? static_cast<Index>(c & 0xffffffffu) : th.target[h];
       if(!may_take(o, e))
         continue;
       pending[(head + count++) % window] = Pending{h, o, e};
       prefetch(th.out_offsets.data() + o);
       prefetch(th.out_offsets.data() + e);
-      prefetch(th.twin.data() + h);
+      if(!as_ends)
+        prefetch(th.twin.data() + h);
     }
     if(count == 0 && scan == nc && nc < all && accepted.size() < minimum)
     {
@@ -371,12 +410,26 @@ void take_greedily(const Triangle_halfedges& th, const double* xyz, const Key_ar
     }
     if(count > position_step)
     {
-      const Pending& p = pending[(head + position_step) % window];
+      Pending& p = pending[(head + position_step) % window];
       prefetch(xyz + 3 * std::size_t(p.o));
       for(Index k = th.out_offsets[p.o]; k < th.out_offsets[p.o + 1]; ++k)
+      {
         prefetch(xyz + 3 * std::size_t(th.out_target[k]));
+        if(p.h == invalid_index && th.out_target[k] == p.e)
+        {
+          p.h = th.out[k];                                  // (given by its ends)
+          prefetch(th.twin.data() + p.h);
+        }
+      }
     }
-    const Pending c = pending[head];
+    Pending c = pending[head];
+    if(c.h == invalid_index)                                // given by its ends, not yet found
+      for(Index k = th.out_offsets[c.o]; k < th.out_offsets[c.o + 1]; ++k)
+        if(th.out_target[k] == c.e)
+        {
+          c.h = th.out[k];
+          break;
+        }
     head = (head + 1) % window;
     --count;
     if(!may_take(c.o, c.e))
@@ -773,7 +826,6 @@ void select_collapses(const Triangle_halfedges& th, const double* xyz, const Cos
   // its ends happen to be free. Measured (bench_quality, adaptive meshes at 25 / 5 / 1 %): RMS
   // error 4-11 % lower; 7 more levels on the bunny and the dragon, dragon decomposition +15 %
   // (1.29 -> 1.47-1.53 s, one process; +4 % when first measured).
-  auto sort_rest = [&] { sort_candidate_rest(th, cost, on_border, key, limit, candidates); };
   // The rounds do more work than the loop (reservations, three passes): on two threads they
   // took as long as the loop (dragon, level 0: 0.12 s both), on one 40 % longer; they are used
   // from four threads on, where the loop would be the largest sequential part
@@ -781,10 +833,20 @@ void select_collapses(const Triangle_halfedges& th, const double* xyz, const Cos
     window = available_threads() >= 4 ? (std::max)(std::size_t(4096), th.n / 64) : sequential_selection;
   if(window == sequential_selection)
     locked.assign(th.n, 0);
+  // the loop reads the candidates' ends (candidate_ends()), the rounds their halfedges
+  const bool as_ends = window == sequential_selection && !th.repeated_directed_edge;
+  if(as_ends)
+    candidate_ends(th, key, candidates, 0);
+  auto sort_rest = [&] {
+    const std::size_t first = candidates.size();
+    sort_candidate_rest(th, cost, on_border, key, limit, candidates);
+    if(as_ends)
+      candidate_ends(th, key, candidates, first);
+  };
   run_taking([&] {
     if(window == sequential_selection)
       take_greedily(th, xyz, candidates, sorted, all, sort_rest, key, budget, on_border, locked, source_of_target, accepted,
-                    th.n, th.n / 16 + 1);
+                    th.n, th.n / 16 + 1, as_ends);
     else
       take_greedily_in_rounds(th, xyz, candidates, sorted, all, sort_rest, key, budget, on_border, source_of_target, accepted,
                               th.n, th.n / 16 + 1, window);
