@@ -1567,3 +1567,70 @@ TEST_CASE("the look-ahead greedy selection and its parallel rounds take the coll
     }
   }
 }
+
+TEST_CASE("the greedy loop takes the same collapses from the candidates' ends as from their halfedges", "[pyramid][cost]")
+{
+  typedef SMR::internal::Index Index;
+  std::vector<Mesh> meshes;
+  meshes.push_back(smr_test::icosphere<Mesh>(4));
+  meshes.push_back(smr_test::planar_grid<Mesh>(40, 0.3));     // border halfedges among the candidates
+  CGAL::Random rng(9);
+  for(Mesh& m : meshes)
+    for(auto v : vertices(m))
+      m.point(v) = m.point(v) + Vector_3(rng.get_double(-.01, .01), rng.get_double(-.01, .01), rng.get_double(-.01, .01));
+  for(const Mesh& m : meshes)
+  {
+    const Input_quadrics in(m);
+    const SMR::internal::Triangle_halfedges& th = in.th;
+    REQUIRE(!th.repeated_directed_edge);
+    auto cost = [&](Index o, Index e) { return in.quadrics.cost(o, e); };
+    // as decompose() selects (n considered, at least n / 16 + 1 taken), then a front of n / 8
+    // keys sorted and considered and n collapses asked for: the loop looks further and sorts
+    // the rest of the candidates (which the ends version converts too)
+    for(const std::size_t wanted : {std::size_t(th.n), std::size_t(th.n / 8)})
+    {
+      std::vector<SMR::internal::Collapse> taken[2];
+      for(const bool as_ends : {false, true})
+      {
+        std::vector<unsigned char> on_border;
+        SMR::internal::Candidate_key key(0);
+        std::size_t all = 0, rests = 0;
+        std::uint64_t limit = 0;
+        SMR::internal::Key_array candidates = SMR::internal::sorted_candidates(th, cost, on_border, key, wanted, all, limit);
+        const std::size_t sorted = candidates.size();
+        if(as_ends)
+        {
+          SMR::internal::candidate_ends(th, key, candidates, 0);
+          for(std::size_t i = 0; i < sorted; ++i)        // every candidate an edge of the mesh
+          {
+            const Index o = Index(candidates[i] >> 32), e = Index(candidates[i] & 0xffffffffu);
+            bool edge = false;
+            for(Index k = th.out_offsets[o]; k < th.out_offsets[o + 1]; ++k)
+              edge = edge || th.out_target[k] == e;
+            REQUIRE(edge);
+          }
+        }
+        auto sort_rest = [&] {
+          const std::size_t first = candidates.size();
+          SMR::internal::sort_candidate_rest(th, cost, on_border, key, limit, candidates);
+          if(as_ends)
+            SMR::internal::candidate_ends(th, key, candidates, first);
+          ++rests;
+        };
+        std::vector<unsigned char> locked(th.n, 0);
+        SMR::internal::Index_array source_of_target(th.n);
+        SMR::internal::take_greedily(th, in.xyz.data(), candidates, sorted, all, sort_rest, key, std::size_t(-1), on_border,
+                                     locked, source_of_target, taken[as_ends], wanted,
+                                     wanted == th.n ? th.n / 16 + 1 : th.n, as_ends);
+        CHECK(rests == (wanted < th.n ? 1u : 0u));
+      }
+      REQUIRE(taken[0].size() > th.n / 16);
+      REQUIRE(taken[0].size() == taken[1].size());
+      for(std::size_t i = 0; i < taken[0].size(); ++i)
+      {
+        CHECK(taken[0][i].o == taken[1][i].o);
+        CHECK(taken[0][i].e == taken[1][i].e);
+      }
+    }
+  }
+}
