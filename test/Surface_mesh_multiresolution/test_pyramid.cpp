@@ -1605,7 +1605,7 @@ TEST_CASE("the greedy loop takes the same collapses from the candidates' ends as
           SMR::internal::candidate_ends(th, key, candidates, 0);
           for(std::size_t i = 0; i < sorted; ++i)        // every candidate an edge of the mesh
           {
-            const Index o = Index(candidates[i] >> 32), e = Index(candidates[i] & 0xffffffffu);
+            const Index o = SMR::internal::source_of_ends(candidates[i]), e = SMR::internal::target_of_ends(candidates[i]);
             bool edge = false;
             for(Index k = th.out_offsets[o]; k < th.out_offsets[o + 1]; ++k)
               edge = edge || th.out_target[k] == e;

@@ -300,6 +300,8 @@ bool crosses_a_taken_collapse(const Triangle_halfedges& th, Index o, Index e, co
 // A sorted candidate replaced by the ends of its halfedge, source in the high 32 bits
 // (candidate_ends()): what the greedy loop reads first of every candidate.
 inline std::uint64_t ends_of_candidate(Index o, Index e) { return (std::uint64_t(o) << 32) | e; }
+inline Index source_of_ends(std::uint64_t ends) { return static_cast<Index>(ends >> 32); }
+inline Index target_of_ends(std::uint64_t ends) { return static_cast<Index>(ends & 0xffffffffu); }
 
 // Replaces the sorted candidate keys from position `first` on by the ends of their halfedges
 // (ends_of_candidate()), in parallel. Why: the greedy loop read the two ends of every candidate
@@ -369,8 +371,8 @@ void take_greedily(const Triangle_halfedges& th, const double* xyz, const Key_ar
         const std::uint64_t later = candidates[scan + gather_ahead];
         if(as_ends)
         {
-          prefetch(locked.data() + (later >> 32));
-          prefetch(locked.data() + (later & 0xffffffffu));
+          prefetch(locked.data() + source_of_ends(later));
+          prefetch(locked.data() + target_of_ends(later));
         }
         else
         {
@@ -380,8 +382,8 @@ void take_greedily(const Triangle_halfedges& th, const double* xyz, const Key_ar
       }
       const std::uint64_t c = candidates[scan++];
       const Index h = as_ends ? invalid_index : key.halfedge(c);
-      const Index o = as_ends ? static_cast<Index>(c >> 32) : th.source[h];
-      const Index e = as_ends ? static_cast<Index>(c & 0xffffffffu) : th.target[h];
+      const Index o = as_ends ? source_of_ends(c) : th.source[h];
+      const Index e = as_ends ? target_of_ends(c) : th.target[h];
       if(!may_take(o, e))
         continue;
       pending[(head + count++) % window] = Pending{h, o, e};
@@ -423,13 +425,6 @@ void take_greedily(const Triangle_halfedges& th, const double* xyz, const Key_ar
       }
     }
     Pending c = pending[head];
-    if(c.h == invalid_index)                                // given by its ends, not yet found
-      for(Index k = th.out_offsets[c.o]; k < th.out_offsets[c.o + 1]; ++k)
-        if(th.out_target[k] == c.e)
-        {
-          c.h = th.out[k];
-          break;
-        }
     head = (head + 1) % window;
     --count;
     if(!may_take(c.o, c.e))
@@ -438,6 +433,10 @@ void take_greedily(const Triangle_halfedges& th, const double* xyz, const Key_ar
        && crosses_a_taken_collapse(th, c.o, c.e, [&](Index y) { return (locked[y] & taken_target) != 0; },
                                    [&](Index y) { return source_of_target[y]; }))
       continue;
+    if(c.h == invalid_index)                                // given by its ends, not found ahead (a short window)
+      for(Index k = th.out_offsets[c.o]; k < th.out_offsets[c.o + 1] && c.h == invalid_index; ++k)
+        if(th.out_target[k] == c.e)
+          c.h = th.out[k];
     if(!satisfies_link_condition(th, c.h, c.o, c.e, on_border) || does_collapse_flip_a_face(th, c.o, c.e, xyz))
       continue;
     locked[c.o] |= in_a_taken_star;
