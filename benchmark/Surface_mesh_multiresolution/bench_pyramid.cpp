@@ -6,7 +6,8 @@
 // the memory of the decomposition is measured in a fresh process of this program.
 //
 // Usage: bench_pyramid [mesh files...]   (default: CGAL data meshes)
-//        bench_pyramid --scaling FILE...    (1, 2, 4, ... threads)
+//        bench_pyramid --scaling FILE...    (1, 2, 4, ... threads; then the machine's own
+//                                            speed-up on a stream, a gather and a computation)
 //        bench_pyramid --sizes FILE N       (the mesh and N Loop subdivisions of it, as
 //                                            subdivided and in a spatial order)
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -32,12 +33,14 @@
 #include "scan_io.h"   // smr_tool::order_spatially(), the tool's --spatial-order
 #ifdef CGAL_LINKED_WITH_TBB
 #include <tbb/global_control.h>
+#include <tbb/parallel_for.h>
 #include <tbb/info.h>
 #endif
 
 #include <sys/resource.h>
 #include <unistd.h>
 
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
@@ -129,6 +132,60 @@ int memory_mode(const char* file)
 // The thread counts alternate in rounds (1, 2, ..., then 1, 2, ... again) and each keeps its
 // best time: on a shared machine whose speed drifts within a minute, measuring one thread
 // count after the other moved the speed-up by 15 % between runs.
+#ifdef CGAL_LINKED_WITH_TBB
+// The machine's own speed-up at the thread counts of --scaling, on three plain loops over
+// arrays larger than the caches (16M doubles): a stream (b = 2a + 1: memory bandwidth), a
+// gather (b[i] = a[idx[i]], random indices: memory latency) and a computation (40 dependent
+// multiply-adds per value: the cores). The decomposition and the reconstruction are a mix of
+// the three; their speed-ups are read against these ceilings. Counts alternate in rounds.
+void machine_ceilings(const std::vector<int>& counts, int rounds)
+{
+  const std::size_t n = std::size_t(1) << 24;
+  std::vector<double> a(n), b(n);
+  std::vector<std::uint32_t> idx(n);
+  std::uint64_t s = 88172645463325252ull;                  // xorshift64: a fixed random permutation's worth of indices
+  for(std::size_t i = 0; i < n; ++i)
+  {
+    s ^= s << 13; s ^= s >> 7; s ^= s << 17;
+    idx[i] = std::uint32_t(s % n);
+    a[i] = double(i);
+  }
+  auto loop = [&](std::size_t count, const auto& body) {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, 1 << 14), [&](const tbb::blocked_range<std::size_t>& r) {
+      for(std::size_t i = r.begin(); i < r.end(); ++i) body(i);
+    });
+  };
+  const char* names[3] = {"stream (bandwidth)", "gather (latency)", "compute (cores)"};
+  std::vector<std::vector<double> > best(3, std::vector<double>(counts.size(), 1e30));
+  for(int round = 0; round < rounds; ++round)
+    for(std::size_t c = 0; c < counts.size(); ++c)
+    {
+      tbb::global_control limit(tbb::global_control::max_allowed_parallelism, std::size_t(counts[c]));
+      for(int k = 0; k < 3; ++k)
+      {
+        CGAL::Real_timer timer;
+        timer.start();
+        if(k == 0)
+          loop(n, [&](std::size_t i) { b[i] = 2. * a[i] + 1.; });
+        else if(k == 1)
+          loop(n, [&](std::size_t i) { b[i] = a[idx[i]]; });
+        else
+          loop(n / 8, [&](std::size_t i) {
+            double x = a[i];
+            for(int j = 0; j < 40; ++j) x = x * 1.0000001 + 0.5;
+            b[i] = x;
+          });
+        best[k][c] = (std::min)(best[k][c], timer.time());
+      }
+    }
+  std::printf("\n| machine loop | threads | time (s) | speed-up |\n|---|---:|---:|---:|\n");
+  for(int k = 0; k < 3; ++k)
+    for(std::size_t c = 0; c < counts.size(); ++c)
+      std::printf("| %s | %d | %.3f | %.2f |\n", names[k], counts[c], best[k][c], best[k][0] / best[k][c]);
+  std::printf("(checksum %.1f)\n", b[n / 3]);
+}
+#endif
+
 int scaling_mode(int argc, char** argv)
 {
 #ifdef CGAL_LINKED_WITH_TBB
@@ -171,6 +228,7 @@ int scaling_mode(int argc, char** argv)
                   best_r[c], best_r[0] / best_r[c], values[c] == values[0] ? "yes" : "NO");
     std::fflush(stdout);
   }
+  machine_ceilings(counts, rounds);
   return 0;
 #else
   (void)argc; (void)argv;

@@ -198,8 +198,10 @@ void reconstruct_faces(const Pyramid<TriangleMesh>& pyr, std::size_t level, std:
   F.clear();
   F.reserve(3 * pyr.number_of_faces(level));
   F = pyr.coarse_faces();
+  std::vector<Index> scratch;
+  scratch.reserve(3 * pyr.number_of_faces(level));
   for(std::size_t k = pyr.number_of_levels(); k-- > level; )
-    expand_faces(pyr.levels()[k], F);
+    expand_faces(pyr.levels()[k], F, scratch);
 }
 
 // The buffers of the values' reconstruction, reserved at their largest size by reserve(), so
@@ -210,7 +212,7 @@ struct Values_workspace
   std::vector<std::vector<double> > values;   // per channel, rows of the current level
   std::vector<double> state, prediction;
   std::vector<unsigned char> is_odd;
-  std::vector<Index> faces;                    // the face array of the current level
+  std::vector<Index> faces, scratch_faces;     // the face array of the current level, expand_faces()' scratch
 
   template <typename TriangleMesh>
   void reserve(const Pyramid<TriangleMesh>& pyr, std::size_t level)
@@ -224,6 +226,7 @@ struct Values_workspace
     prediction.reserve(n * dim);
     is_odd.reserve(n);
     faces.reserve(3 * pyr.number_of_faces(level));
+    scratch_faces.reserve(3 * pyr.number_of_faces(level));
   }
 };
 
@@ -248,7 +251,7 @@ void reconstruct_values(const Pyramid<TriangleMesh>& pyr, std::size_t level, Val
   {
     const Pyramid_level& lev = pyr.levels()[k];
     if(weights.computed())
-      expand_faces(lev, ws.faces);
+      expand_faces(lev, ws.faces, ws.scratch_faces);
     odd_row_flags(lev, ws.is_odd);
     if(nc == 1 && weights.rows_computable_as_applied(lev))
     {
@@ -457,10 +460,10 @@ void store_weights(Pyramid<TriangleMesh>& pyr, bool store = true)
   internal::Level_weights weights(pyr);
   if(!weights.computed())
     return;
-  std::vector<internal::Index> F = pyr.coarse_faces();
+  std::vector<internal::Index> F = pyr.coarse_faces(), scratch;
   for(std::size_t k = levels.size(); k-- > 0; )
   {
-    internal::expand_faces(levels[k], F);
+    internal::expand_faces(levels[k], F, scratch);
     if(!weights.stored(levels[k]))
       levels[k].weights = weights.of(levels[k], F);
   }

@@ -86,11 +86,11 @@ void build_adaptive_hierarchy(const Pyramid<TriangleMesh>& pyr, Adaptive_hierarc
   h.odd_number.assign(n0, invalid_index);
   h.star.assign(K, std::vector<Index>());
   h.star_offsets.assign(K, std::vector<Index>());
-  std::vector<Index> F = pyr.coarse_faces(), odd_index(n0, invalid_index);
+  std::vector<Index> F = pyr.coarse_faces(), odd_index(n0, invalid_index), scratch;
   for(std::size_t k = K; k-- > 0; )
   {
     const Pyramid_level& lev = pyr.levels()[k];
-    expand_faces(lev, F);                                      // F is now M_k's face array
+    expand_faces(lev, F, scratch);                             // F is now M_k's face array
     for(std::size_t q = 0; q < lev.odd_rows.size(); ++q)
     {
       const Index o = lev.vertices[lev.odd_rows[q]];

@@ -17,6 +17,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cstring>
+#include <type_traits>
 #include <utility>
 #include <stdexcept>
 #include <vector>
@@ -60,18 +61,36 @@ inline void list_face_halfedges_by_source(std::size_t n, const std::vector<Index
   out_target.resize(offsets[n]);
   out_apex.resize(with_apexes ? offsets[n] : 0);
   std::vector<Index> fill(offsets.begin(), offsets.end() - 1);
-  for_ranges([&](Index lo, Index span) {
-    for(Index h = 0; h < h0; ++h)
-    {
-      if(tri[h] - lo >= span)
-        continue;
-      const Index k = fill[tri[h]]++;
-      const Index next = h % 3 == 2 ? h - 2 : h + 1;
+  // face by face, its three corners from its three vertices read once, the cases (apexes or
+  // not, one range or several) compiled apart: the loop over the corners, which found a
+  // corner's next and previous vertices by remainders of its number and tested both cases at
+  // every corner, took twice as long (the dragon's 2.6M corners, one thread: 0.042-0.055 s
+  // against 0.024 s), and this sort is a sixth of a reconstruction
+  auto scatter = [&](Index lo, Index span, auto apexes, auto one_range) {
+    auto put = [&](Index v, Index h, Index next, Index apex) {
+      if(!decltype(one_range)::value && v - lo >= span)   // (unsigned: below lo wraps around)
+        return;
+      const Index k = fill[v]++;
       out[k] = h;
-      out_target[k] = tri[next];
-      if(with_apexes)
-        out_apex[k] = tri[next % 3 == 2 ? next - 2 : next + 1];
+      out_target[k] = next;
+      if(decltype(apexes)::value)
+        out_apex[k] = apex;
+    };
+    for(Index f = 0; f < h0; f += 3)
+    {
+      const Index a = tri[f], b = tri[f + 1], c = tri[f + 2];
+      put(a, f, b, c);
+      put(b, f + 1, c, a);
+      put(c, f + 2, a, b);
     }
+  };
+  typedef std::true_type yes;
+  typedef std::false_type no;
+  for_ranges([&](Index lo, Index span) {
+    if(ranges == 1)
+      with_apexes ? scatter(lo, span, yes(), yes()) : scatter(lo, span, no(), yes());
+    else
+      with_apexes ? scatter(lo, span, yes(), no()) : scatter(lo, span, no(), no());
   });
 }
 

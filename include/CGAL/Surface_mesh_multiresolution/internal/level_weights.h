@@ -201,7 +201,7 @@ std::string analyse_levels(const Pyramid<TriangleMesh>& pyr, const std::vector<s
 {
   constexpr bool trusted = std::is_same<FacesCheck, Trusted_faces>::value;
   Level_weights weights(pyr);
-  std::vector<Index> F;
+  std::vector<Index> F, scratch;
   if(weights.computed() || !trusted)
     F = pyr.coarse_faces();
   std::vector<double> f, details;
@@ -213,7 +213,7 @@ std::string analyse_levels(const Pyramid<TriangleMesh>& pyr, const std::vector<s
     if constexpr(trusted)
     {
       if(weights.computed())
-        expand_faces(level, F);
+        expand_faces(level, F, scratch);
       w = &weights.of(level, F);
     }
     else
