@@ -1472,17 +1472,102 @@ TEST_CASE("the corners listed by source in parallel ranges are those of the sequ
   }
   for(std::size_t v = 0; v < n; ++v)
     CHECK(offsets[v] + next[v] == offsets[v + 1]);
-#ifdef CGAL_LINKED_WITH_TBB
-  for(int threads : {3, 8})   // other numbers of ranges: the same lists
+  // without apexes: the same corners and targets, no apex written
   {
-    tbb::task_arena arena(threads);
     std::vector<Index> o2;
     SMR::internal::Index_array out2, t2, a2;
-    arena.execute([&] { SMR::internal::list_face_halfedges_by_source(n, tri, true, o2, out2, t2, a2); });
+    SMR::internal::list_face_halfedges_by_source(n, tri, false, o2, out2, t2, a2);
     CHECK(o2 == offsets);
     CHECK(out2 == out);
     CHECK(t2 == target);
-    CHECK(a2 == apex);
+    CHECK(a2.empty());
+  }
+#ifdef CGAL_LINKED_WITH_TBB
+  for(int threads : {1, 3, 8})   // other numbers of ranges (one: the single-range case): the same lists
+    for(bool apexes : {true, false})
+    {
+      tbb::task_arena arena(threads);
+      std::vector<Index> o2;
+      SMR::internal::Index_array out2, t2, a2;
+      arena.execute([&] { SMR::internal::list_face_halfedges_by_source(n, tri, apexes, o2, out2, t2, a2); });
+      CHECK(o2 == offsets);
+      CHECK(out2 == out);
+      CHECK(t2 == target);
+      CHECK((apexes ? a2 == apex : a2.empty()));
+    }
+#endif
+}
+
+// The expansion of the face arrays (vertex splits on arrays), level by level from the coarsest
+// mesh, in parallel blocks, against a plain sequential statement of it: face p of M_k is the
+// removed face r if p is the r-th removed position, else the next kept face of M_{k+1} with
+// its rows renamed to those of M_k; then the odd vertices back at their corners. Every level of
+// the faces of a mesh large enough for several blocks, on 1, 2 and 3 threads.
+TEST_CASE("the face arrays expanded in parallel blocks are those of the sequential vertex splits", "[pyramid][faces]")
+{
+  typedef SMR::internal::Index Index;
+  Mesh m = smr_test::planar_grid<Mesh>(90, 0.3);           // 8,281 vertices, 16,200 faces
+  const SMR::Pyramid<Mesh> pyr = SMR::decompose(m);
+  REQUIRE(pyr.number_of_levels() > 3);
+  REQUIRE(pyr.number_of_faces(0) > 2 * 4096);
+  auto expanded_sequentially = [&](const SMR::internal::Pyramid_level& lev, const std::vector<Index>& F) {
+    std::vector<Index> G;
+    std::size_t kept = 0, r = 0;
+    const std::size_t nf = F.size() / 3 + lev.removed_face_positions.size();
+    for(std::size_t p = 0; p < nf; ++p)
+      if(r < lev.removed_face_positions.size() && lev.removed_face_positions[r] == p)
+      {
+        G.insert(G.end(), lev.removed_faces.begin() + 3 * r, lev.removed_faces.begin() + 3 * r + 3);
+        ++r;
+      }
+      else
+      {
+        for(int c = 0; c < 3; ++c)
+          G.push_back(lev.even_rows[F[3 * kept + c]]);
+        ++kept;
+      }
+    for(std::size_t q = 0; q < lev.renamed_corners.size(); ++q)
+      G[lev.renamed_corners[q]] = lev.renamed_vertices[q];
+    return G;
+  };
+  std::vector<std::vector<Index> > reference(pyr.number_of_levels() + 1);
+  reference[pyr.number_of_levels()] = pyr.coarse_faces();
+  for(std::size_t k = pyr.number_of_levels(); k-- > 0; )
+    reference[k] = expanded_sequentially(pyr.levels()[k], reference[k + 1]);
+  REQUIRE(reference[0].size() == 3 * pyr.number_of_faces(0));
+  // level 0 is the input's faces (rows are the input's vertex numbers), each in some rotation
+  std::multiset<std::array<Index, 3> > input_faces, level0_faces;
+  auto rotated = [](Index a, Index b, Index c) {
+    return a < b && a < c ? std::array<Index, 3>{a, b, c} : (b < c ? std::array<Index, 3>{b, c, a} : std::array<Index, 3>{c, a, b});
+  };
+  for(auto f : faces(m))
+  {
+    std::vector<Index> v;
+    for(auto x : CGAL::vertices_around_face(halfedge(f, m), m))
+      v.push_back(Index(x.idx()));
+    input_faces.insert(rotated(v[0], v[1], v[2]));
+  }
+  for(std::size_t p = 0; p < reference[0].size(); p += 3)
+    level0_faces.insert(rotated(reference[0][p], reference[0][p + 1], reference[0][p + 2]));
+  CHECK(level0_faces == input_faces);
+  auto expand_all = [&] {
+    std::vector<Index> F = pyr.coarse_faces(), scratch;
+    bool same = true;
+    for(std::size_t k = pyr.number_of_levels(); k-- > 0; )
+    {
+      SMR::internal::expand_faces(pyr.levels()[k], F, scratch);
+      same = same && F == reference[k];
+    }
+    return same;
+  };
+  CHECK(expand_all());
+#ifdef CGAL_LINKED_WITH_TBB
+  for(int threads : {1, 2, 3})
+  {
+    tbb::task_arena arena(threads);
+    bool same = false;
+    arena.execute([&] { same = expand_all(); });
+    CHECK(same);
   }
 #endif
 }
