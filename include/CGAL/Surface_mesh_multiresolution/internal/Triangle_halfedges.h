@@ -355,13 +355,18 @@ private:
     const std::size_t h0 = 3 * nf, nh = h0 + border_halfedges;
     source.resize(nh);
     target.resize(nh);
-    parallel_for_blocks(h0, [&](std::size_t first, std::size_t last) {
-      for(std::size_t h = first; h < last; ++h)
+    parallel_for_blocks(nf, [&](std::size_t first, std::size_t last) {
+      for(std::size_t f = first; f < last; ++f)            // face by face: no remainder per halfedge
       {
-        source[h] = tri[h];
-        target[h] = tri[next_in_face(static_cast<Index>(h))];
+        const Index a = tri[3 * f], b = tri[3 * f + 1], c = tri[3 * f + 2];
+        source[3 * f] = a;
+        source[3 * f + 1] = b;
+        source[3 * f + 2] = c;
+        target[3 * f] = b;
+        target[3 * f + 1] = c;
+        target[3 * f + 2] = a;
       }
-    });
+    }, 4096);
   }
 
   // The border halfedges (twins of `border_twins`, in order) numbered after the face
