@@ -64,8 +64,8 @@ inline void list_face_halfedges_by_source(std::size_t n, const std::vector<Index
   // face by face, its three corners from its three vertices read once, the cases (apexes or
   // not, one range or several) compiled apart: the loop over the corners, which found a
   // corner's next and previous vertices by remainders of its number and tested both cases at
-  // every corner, took twice as long (the dragon's 2.6M corners, one thread: 0.042-0.055 s
-  // against 0.024 s), and this sort is a sixth of a reconstruction
+  // every corner, took up to twice as long (the dragon's 2.6M corners, one thread: 0.042-0.055 s
+  // against 0.029 s), and this sort was a sixth of a reconstruction
   auto scatter = [&](Index lo, Index span, auto apexes, auto one_range) {
     auto put = [&](Index v, Index h, Index next, Index apex) {
       if(!decltype(one_range)::value && v - lo >= span)   // (unsigned: below lo wraps around)
