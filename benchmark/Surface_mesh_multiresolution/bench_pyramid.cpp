@@ -127,11 +127,6 @@ int memory_mode(const char* file)
   return 0;
 }
 
-// `bench_pyramid --scaling FILE...`: decomposition and reconstruction times for 1, 2, 4, ...
-// threads up to the machine's, and whether every pyramid is bit-identical to the 1-thread one.
-// The thread counts alternate in rounds (1, 2, ..., then 1, 2, ... again) and each keeps its
-// best time: on a shared machine whose speed drifts within a minute, measuring one thread
-// count after the other moved the speed-up by 15 % between runs.
 #ifdef CGAL_LINKED_WITH_TBB
 // The machine's own speed-up at the thread counts of --scaling, on three plain loops over
 // arrays larger than the caches (16M doubles): a stream (b = 2a + 1: memory bandwidth), a
@@ -143,7 +138,7 @@ void machine_ceilings(const std::vector<int>& counts, int rounds)
   const std::size_t n = std::size_t(1) << 24;
   std::vector<double> a(n), b(n);
   std::vector<std::uint32_t> idx(n);
-  std::uint64_t s = 88172645463325252ull;                  // xorshift64: a fixed random permutation's worth of indices
+  std::uint64_t s = 88172645463325252ull;                  // xorshift64: the same pseudo-random indices every run
   for(std::size_t i = 0; i < n; ++i)
   {
     s ^= s << 13; s ^= s >> 7; s ^= s << 17;
@@ -186,6 +181,11 @@ void machine_ceilings(const std::vector<int>& counts, int rounds)
 }
 #endif
 
+// `bench_pyramid --scaling FILE...`: decomposition and reconstruction times for 1, 2, 4, ...
+// threads up to the machine's, and whether every pyramid is bit-identical to the 1-thread one.
+// The thread counts alternate in rounds (1, 2, ..., then 1, 2, ... again) and each keeps its
+// best time: on a shared machine whose speed drifts within a minute, measuring one thread
+// count after the other moved the speed-up by 15 % between runs.
 int scaling_mode(int argc, char** argv)
 {
 #ifdef CGAL_LINKED_WITH_TBB
