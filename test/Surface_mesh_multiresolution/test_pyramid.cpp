@@ -999,6 +999,28 @@ TEST_CASE("candidate keys are the same with and without the cost model's prefetc
   const auto with_hint = SMR::internal::candidate_keys(th, hinted, on_border, key);
   const auto without = SMR::internal::candidate_keys(th, [&](Index o, Index e) { return quadrics.cost(o, e); }, on_border, key);
   CHECK(std::vector<std::uint64_t>(with_hint.begin(), with_hint.end()) == std::vector<std::uint64_t>(without.begin(), without.end()));
+  // the quadrics' costs of a whole 1-ring (Q_o read once) are those of cost(o, e), bit for bit,
+  // and the low bits kept per halfedge are those of each candidate's cost
+  struct Ring_cost
+  {
+    SMR::internal::Optional<double> operator()(Index o, Index e) const { return q.cost(o, e); }
+    SMR::internal::Plane_quadrics::Costs_from costs_from(Index o) const { return q.costs_from(o); }
+    const SMR::internal::Plane_quadrics& q;
+  };
+  std::vector<std::uint32_t> low(th.source.size());
+  const auto by_ring = SMR::internal::candidate_keys(th, Ring_cost{quadrics}, on_border, key, low.data());
+  CHECK(std::vector<std::uint64_t>(by_ring.begin(), by_ring.end()) == std::vector<std::uint64_t>(without.begin(), without.end()));
+  std::size_t low_checked = 0;
+  for(std::size_t o = 0; o < th.n; ++o)
+    for(Index k = th.out_offsets[o]; k < th.out_offsets[o + 1]; ++k)
+      if(by_ring[k] != SMR::internal::refused_candidate)
+      {
+        const double c = *quadrics.cost(static_cast<Index>(o), th.out_target[k]);
+        CHECK(low[k] == key.low_bits(c));
+        CHECK(by_ring[k] == key(c, th.out[k]));
+        ++low_checked;
+      }
+  CHECK(low_checked > 0);
   CHECK(hints.load() > 0);                                   // the hint was taken
   CHECK(hints.load() <= th.source.size());                   // at most one per candidate
   CHECK(bad_hints.load() == 0);
@@ -1112,7 +1134,8 @@ TEST_CASE("the candidates' radix sort orders by (cost, halfedge) like a comparis
     std::sort(expected.begin(), expected.end(), [&](auto a, auto b) { return cost_of[a] < cost_of[b] || (cost_of[a] == cost_of[b] && a < b); });
     if(trial % 2 == 1 || trial == 6)   // the input order does not matter
       std::shuffle(c.begin(), c.end(), std::mt19937(trial));
-    auto cost = [&](SMR::internal::Index h) { return cost_of[h]; };
+    // runs of equal cost bits: by the bits of the cost the key leaves out, then by halfedge
+    auto cost = [&](SMR::internal::Index h) { return (std::uint64_t(key.low_bits(cost_of[h])) << 32) | h; };
     // the front of cheapest_keys() (refused keys mixed in) is a true prefix of the order:
     // sorting it and the rest (keys_above()) apart gives the full order, and it holds at least
     // the wanted keys
@@ -1140,6 +1163,33 @@ TEST_CASE("the candidates' radix sort orders by (cost, halfedge) like a comparis
       front.insert(front.end(), m.begin(), m.end());
       for(std::size_t i = 0; i < front.size(); ++i)
         REQUIRE(key.halfedge(front[i]) == expected[i]);
+      // the same with the low bits carried beside the keys (sorted_candidates()): the front's
+      // low bits follow its keys, and sort_front() gives the same order
+      SMR::internal::Key_array m2;
+      SMR::internal::Low_bits low2;
+      for(std::size_t i = 0; i < c.size(); ++i)
+      {
+        if(i % 5 == 2)
+        {
+          m2.push_back(refused);
+          low2.push_back(0);
+        }
+        m2.push_back(c[i]);
+        low2.push_back(key.low_bits(cost_of[key.halfedge(c[i])]));
+      }
+      SMR::internal::Low_bits front_low;
+      SMR::internal::Key_array front2 = SMR::internal::cheapest_keys(m2, key, refused, wanted, total, limit, &low2, &front_low);
+      REQUIRE(front_low.size() == front2.size());
+      for(std::size_t i = 0; i < front2.size(); ++i)
+        REQUIRE(front_low[i] == key.low_bits(cost_of[key.halfedge(front2[i])]));
+      SMR::internal::keys_above(m2, key, refused, limit, &low2);
+      REQUIRE(low2.size() == m2.size());
+      SMR::internal::sort_front(front2, front_low, key);
+      SMR::internal::sort_front(m2, low2, key);
+      front2.insert(front2.end(), m2.begin(), m2.end());
+      REQUIRE(front2.size() == expected.size());
+      for(std::size_t i = 0; i < front2.size(); ++i)
+        REQUIRE(key.halfedge(front2[i]) == expected[i]);
     }
     SMR::internal::sort_candidates(c.data(), c.size(), key, cost);
     REQUIRE(c.size() == expected.size());

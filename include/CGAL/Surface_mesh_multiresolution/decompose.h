@@ -44,6 +44,10 @@ struct Cost_of_rows
 {
   Optional<double> operator()(Index o, Index e) const { return model.cost(o, e); }
   void prefetch_target(Index e) const { prefetch_cost_operands(model, e, 0); }
+  // the costs of moving o onto its neighbours (candidate_keys()), where the model has them
+  // (Plane_quadrics::costs_from()); without, candidate_keys() calls the cost above
+  template <typename Model = CostModel>
+  auto costs_from(Index o) const -> decltype(std::declval<const Model&>().costs_from(o)) { return model.costs_from(o); }
   const CostModel& model;
 };
 

@@ -102,6 +102,33 @@ public:
     return Optional<double>(evaluate(s, x));
   }
 
+  // The costs of moving row o onto rows e, Q_o read once: candidate_keys() computes the costs of
+  // a whole 1-ring in a row, where a call per halfedge (not inlined there) read Q_o again for
+  // every neighbour. The same additions and products as cost(): the same bits (a test compares).
+  class Costs_from
+  {
+  public:
+    Costs_from(const Plane_quadrics& q, Index o) : m_q(q)
+    {
+      const double* a = q.quadric(o);
+      for(std::size_t i = 0; i < size; ++i)
+        m_a[i] = a[i];
+    }
+    double operator()(Index e) const
+    {
+      const double* b = m_q.quadric(e);
+      double s[size];
+      for(std::size_t i = 0; i < size; ++i)
+        s[i] = m_a[i] + b[i];
+      return evaluate(s, m_q.point(e));
+    }
+
+  private:
+    const Plane_quadrics& m_q;
+    double m_a[size];
+  };
+  Costs_from costs_from(Index o) const { return Costs_from(*this, o); }
+
   // a hint that cost(., e) will be read soon (candidate_keys()): the cache lines of Q_e (80
   // bytes at a multiple of 16: always two lines) and of p_e (24 bytes: one or two)
   void prefetch_target(Index e) const

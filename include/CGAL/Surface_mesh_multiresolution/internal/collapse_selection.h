@@ -104,6 +104,9 @@ struct Collapse { Index o, e; };
 
 // candidate keys (Candidate_key below); every key of such an array is written before it is read
 typedef Uninitialized_vector<std::uint64_t> Key_array;
+// beside a Key_array, the low bits of each key's cost (Candidate_key::low_bits()), which order
+// the runs of equal cost bits in sort_candidates()
+typedef Uninitialized_vector<std::uint32_t> Low_bits;
 
 // A candidate collapse in 8 bytes: the leading `cost_bits` bits of the order-preserving
 // integer image of its cost (sign, exponent, mantissa), then its halfedge in the low
@@ -120,14 +123,23 @@ public:
       ++m_halfedge_bits;
     m_cost_bits = (std::min)(40, 64 - m_halfedge_bits);
   }
-  std::uint64_t operator()(double cost, Index h) const
+  std::uint64_t operator()(double cost, Index h) const { return of_image(image(cost), h); }
+  // the order-preserving integer image of a cost (not NaN): a < b iff image(a) < image(b)
+  static std::uint64_t image(double cost)
   {
     cost += 0.;                                             // -0 -> +0: equal costs, equal keys
     std::uint64_t b;
     std::memcpy(&b, &cost, sizeof b);
-    b = (b >> 63) ? ~b : (b | (std::uint64_t(1) << 63));
-    return ((b >> (64 - m_cost_bits)) << m_halfedge_bits) | h;
+    return (b >> 63) ? ~b : (b | (std::uint64_t(1) << 63));
   }
+  std::uint64_t of_image(std::uint64_t image, Index h) const { return ((image >> (64 - m_cost_bits)) << m_halfedge_bits) | h; }
+  // the bits of a cost's image that its key leaves out (the last 64 - cost_bits, at most 32):
+  // with the cost bits of the key they order the costs exactly
+  std::uint32_t low_bits_of_image(std::uint64_t image) const
+  {
+    return static_cast<std::uint32_t>(image & ((std::uint64_t(1) << (64 - m_cost_bits)) - 1));
+  }
+  std::uint32_t low_bits(double cost) const { return low_bits_of_image(image(cost)); }
   Index halfedge(std::uint64_t key) const { return static_cast<Index>(key & ((std::uint64_t(1) << m_halfedge_bits) - 1)); }
   // the leading 24 bits of a key (of its cost bits: at least 32), which cheapest_keys() selects on
   int leading_bits_shift() const { return m_cost_bits + m_halfedge_bits - 24; }
@@ -141,15 +153,16 @@ private:
 };
 
 // Sorts candidate keys (any input order) by increasing cost, equal costs in increasing
-// halfedge; cost(h) gives the cost of halfedge h again (the same double: it is a
-// deterministic function). Why by hand: a comparison sort of the 6n candidates was the largest
-// part of the decomposition (16 % of the dragon's), and candidates holding their costs took 16
+// halfedge. Keys of equal cost bits are ordered by tie_order(x), x their low `halfedge_bits`
+// field (the halfedge, or a name of it: sort_front()): (Candidate_key::low_bits() of the cost
+// << 32) | halfedge, the order of the exact costs, then of the halfedges. Why by hand: a
+// comparison sort of the 6n candidates was the largest part of the decomposition (16 % of the dragon's), and candidates holding their costs took 16
 // bytes each. This is a stable LSD radix sort on the cost bits of the keys (passes of 10 bits,
-// a pass skipped when all candidates share its digit), then a comparison sort by the exact
-// costs and halfedges inside each run of equal cost bits (rare), which makes the order total
-// whatever the input order. Deterministic: the same order for any number of threads.
-template <typename CostOfHalfedge>
-void sort_candidates(std::uint64_t* c, std::size_t n, const Candidate_key& key, const CostOfHalfedge& cost)
+// a pass skipped when all candidates share its digit), then a sort by tie_order() inside each
+// run of equal cost bits, which makes the order total (that of the exact costs) whatever the
+// input order. Deterministic: the same order for any number of threads.
+template <typename TieOrder>
+void sort_candidates(std::uint64_t* c, std::size_t n, const Candidate_key& key, const TieOrder& tie_order)
 {
   constexpr int digit_bits = 10;
   constexpr std::size_t buckets = std::size_t(1) << digit_bits;
@@ -206,13 +219,13 @@ void sort_candidates(std::uint64_t* c, std::size_t n, const Candidate_key& key, 
   if(from != c)
     std::copy(from, from + n, c);
   scratch = Key_array();
-  // Runs of equal cost bits are ordered by their exact costs, then halfedges. They are not rare
-  // everywhere: the symmetric stencils of a subdivided mesh make exact ties common (11 of the
-  // 19 million keys sorted while decomposing a Loop-subdivided horse of 3.1M vertices lie in
-  // runs, a seventh of that decomposition when recomputed one run at a time). In parallel over
-  // fixed blocks, each owning the runs that start in it (found before anything is written);
-  // a block first recomputes the costs of all its runs' keys in one loop, independent calls
-  // whose cache misses overlap, then sorts each run. Every run is sorted whole by one task.
+  // Runs of equal cost bits are ordered by their exact costs, then halfedges (tie_order()).
+  // They are not rare everywhere: the symmetric stencils of a subdivided mesh make exact ties
+  // common (11 of the 19 million keys sorted while decomposing a Loop-subdivided horse of 3.1M
+  // vertices lie in runs). In parallel over fixed blocks, each owning the runs that start in
+  // it (found before anything is written); a block first reads the orders of all its runs'
+  // keys in one loop (independent loads whose cache misses overlap), then sorts each run.
+  // Every run is sorted whole by one task.
   constexpr std::size_t run_block = std::size_t(1) << 15;
   const std::size_t run_blocks = (n + run_block - 1) / run_block;
   std::vector<std::size_t> run_start(run_blocks + 1, n);
@@ -226,7 +239,7 @@ void sort_candidates(std::uint64_t* c, std::size_t n, const Candidate_key& key, 
     }
   }, 1);
   parallel_for_blocks(run_blocks, [&](std::size_t first, std::size_t last) {
-    std::vector<std::pair<double, Index> > members;
+    std::vector<std::pair<std::uint64_t, Index> > members;  // (tie order, field)
     std::vector<std::size_t> runs;                          // begin and end of each run, in c
     for(std::size_t b = first; b < last; ++b)
     {
@@ -242,12 +255,12 @@ void sort_candidates(std::uint64_t* c, std::size_t n, const Candidate_key& key, 
           runs.push_back(i);
           runs.push_back(j);
           for(std::size_t q = i; q < j; ++q)
-            members.emplace_back(0., key.halfedge(c[q]));
+            members.emplace_back(0, key.halfedge(c[q]));
         }
         i = j;
       }
-      for(std::pair<double, Index>& m : members)
-        m.first = cost(m.second);
+      for(std::pair<std::uint64_t, Index>& m : members)
+        m.first = tie_order(m.second);
       for(std::size_t r = 0, m = 0; r < runs.size(); r += 2)
       {
         const std::size_t i = runs[r], j = runs[r + 1];
@@ -585,25 +598,6 @@ void take_greedily_in_rounds(const Triangle_halfedges& th, const double* xyz, co
   }
 }
 
-// The cost of the candidate halfedge h = o -> e, NaN for a refused collapse.
-template <typename CostOfRows>
-double candidate_cost(const Triangle_halfedges& th, const CostOfRows& cost, const std::vector<unsigned char>& on_border,
-                      Index h, Index o, Index e)
-{
-  if(on_border[o] && !th.is_border_edge(h))               // border vertices move along the border only
-    return std::numeric_limits<double>::quiet_NaN();
-  const Optional<double> oc = cost(o, e);
-  return oc ? *oc : std::numeric_limits<double>::quiet_NaN();
-}
-
-// the same for a halfedge alone (its ends read from the halfedges): the costs that order runs
-// of equal cost bits
-template <typename CostOfRows>
-double candidate_cost(const Triangle_halfedges& th, const CostOfRows& cost, const std::vector<unsigned char>& on_border, Index h)
-{
-  return candidate_cost(th, cost, on_border, h, th.source[h], th.target[h]);
-}
-
 // A hint that cost(o, e) will be read soon, for cost models that have one
 // (Plane_quadrics::prefetch_target()); none for the others.
 template <typename CostOfRows>
@@ -614,8 +608,43 @@ auto prefetch_cost_operands(const CostOfRows& cost, Index e, int) -> decltype(co
 template <typename CostOfRows>
 void prefetch_cost_operands(const CostOfRows&, Index, long) {}
 
+// the costs of moving row o onto rows e, for the whole 1-ring of o (candidate_keys()):
+// `cost.costs_from(o)` where it exists, else `cost(o, e)`; NaN for a refused collapse
+template <typename CostOfRows>
+auto costs_from_source(const CostOfRows& cost, Index o, int) -> decltype(cost.costs_from(o))
+{
+  return cost.costs_from(o);
+}
+
+template <typename CostOfRows>
+auto costs_from_source(const CostOfRows& cost, Index o, long)
+{
+  return [&cost, o](Index e) {
+    const Optional<double> oc = cost(o, e);
+    return oc ? *oc : std::numeric_limits<double>::quiet_NaN();
+  };
+}
+
 // the key of a refused candidate: none (its cost bits would be a NaN's)
 constexpr std::uint64_t refused_candidate = ~std::uint64_t(0);
+
+// Keeps the keys x of `c` for which keep(x) holds, in their order, and their low bits in `low`
+// (if given)
+template <typename Keep>
+void keep_keys(Key_array& c, Low_bits* low, const Keep& keep)
+{
+  std::size_t w = 0;
+  for(std::size_t i = 0; i < c.size(); ++i)
+    if(keep(c[i]))
+    {
+      if(low != nullptr)
+        (*low)[w] = (*low)[i];
+      c[w++] = c[i];
+    }
+  c.resize(w);
+  if(low != nullptr)
+    low->resize(w);
+}
 
 // The cheapest candidate keys of `c`, in their order in `c`, without the `refused` ones: the
 // keys whose leading 24 bits (Candidate_key::leading_bits()) are at most `limit`, which is
@@ -627,9 +656,11 @@ constexpr std::uint64_t refused_candidate = ~std::uint64_t(0);
 // radix select (two histograms of 12-bit digits in fixed blocks, then a scatter of the front in
 // block order), parallel and deterministic. The front is a new array of about n keys, `c` is
 // left as it is (compacting the rest in place and moving the front before it were sequential
-// passes over the 6 n keys: a third of the select's time).
+// passes over the 6 n keys: a third of the select's time). `low` (if given): the low bits of
+// every key of `c`, whose front's are then written to `front_low` (and `low` is emptied with `c`).
 inline Key_array cheapest_keys(Key_array& c, const Candidate_key& key, std::uint64_t refused,
-                               std::size_t wanted, std::size_t& total, std::uint64_t& limit)
+                               std::size_t wanted, std::size_t& total, std::uint64_t& limit,
+                               Low_bits* low = nullptr, Low_bits* front_low = nullptr)
 {
   const std::size_t n = c.size();
   constexpr int digit_bits = 12;
@@ -658,9 +689,11 @@ inline Key_array cheapest_keys(Key_array& c, const Candidate_key& key, std::uint
   if(2 * (std::max)(wanted, std::size_t(1)) >= total)
   {
     limit = ~std::uint64_t(0);
-    c.erase(std::remove(c.begin(), c.end(), refused), c.end());   // stable: the keys' order kept
+    keep_keys(c, low, [&](std::uint64_t x) { return x != refused; });   // the order kept
     Key_array all;
     all.swap(c);
+    if(low != nullptr)
+      front_low->swap(*low);
     return all;
   }
   // the bucket of the wanted-th key (1-based), first by the leading digit, then by the next
@@ -698,50 +731,98 @@ inline Key_array cheapest_keys(Key_array& c, const Candidate_key& key, std::uint
     offset[b + 1] = offset[b] + in;
   }
   Key_array front(offset[blocks]);
+  if(low != nullptr)
+    front_low->resize(front.size());
   for_blocks([&](std::size_t b, std::size_t first, std::size_t last) {
     std::size_t w = offset[b];
     for(std::size_t i = first; i < last; ++i)
       if(c[i] != refused && key.leading_bits(c[i]) <= limit)
+      {
+        if(low != nullptr)
+          (*front_low)[w] = (*low)[i];
         front[w++] = c[i];
+      }
   });
   return front;
 }
 
 // Keeps in `c`, in their order, the keys past the front of cheapest_keys() (leading bits above
-// `limit`, refused keys left out).
-inline void keys_above(Key_array& c, const Candidate_key& key, std::uint64_t refused, std::uint64_t limit)
+// `limit`, refused keys left out), and their low bits in `low` (if given)
+inline void keys_above(Key_array& c, const Candidate_key& key, std::uint64_t refused, std::uint64_t limit,
+                       Low_bits* low = nullptr)
 {
-  c.erase(std::remove_if(c.begin(), c.end(), [&](std::uint64_t x) { return x == refused || key.leading_bits(x) <= limit; }),
-          c.end());
+  keep_keys(c, low, [&](std::uint64_t x) { return x != refused && key.leading_bits(x) > limit; });
 }
 
 // The keys of the candidate collapses of one level, every halfedge o -> e of M_k in the order
 // of the vertices' lists of outgoing halfedges, `refused_candidate` for those that would move a border
-// vertex off the border and those the cost model refuses. Computed in parallel (TBB), vertex
-// by vertex (the quadric and position of o are read once for its 1-ring, those of its
-// neighbours are near in memory), each into its own slot. The operands of the cost of the
+// vertex off the border and those the cost model refuses; `low_bits` (if given, one per
+// candidate, in the same order): the low bits of each candidate's cost (Candidate_key::low_bits()).
+// Computed in parallel (TBB), vertex by vertex (the quadric and position of o are read once for
+// its 1-ring, Plane_quadrics::costs_from(); those of its neighbours are near in memory), each
+// into its own slot. The operands of the cost of the
 // candidate `cost_prefetch_distance` places ahead are prefetched: on the dragon the costs
 // waited on the loads of Q_e and p_e (46 % of their samples), one after the other.
 constexpr Index cost_prefetch_distance = 16;
 
 template <typename CostOfRows>
 Key_array candidate_keys(const Triangle_halfedges& th, const CostOfRows& cost,
-                         const std::vector<unsigned char>& on_border, const Candidate_key& key)
+                         const std::vector<unsigned char>& on_border, const Candidate_key& key,
+                         std::uint32_t* low_bits = nullptr)
 {
   Key_array candidates(th.source.size());
   parallel_for_blocks(th.n, [&](std::size_t first, std::size_t last) {
     const Index end = th.out_offsets[last];
     for(std::size_t o = first; o < last; ++o)
+    {
+      const auto cost_from_o = costs_from_source(cost, static_cast<Index>(o), 0);
+      const bool border = on_border[o] != 0;
       for(Index k = th.out_offsets[o]; k < th.out_offsets[o + 1]; ++k)
       {
         if(k + cost_prefetch_distance < end)
           prefetch_cost_operands(cost, th.out_target[k + cost_prefetch_distance], 0);
         const Index h = th.out[k];
-        const double c = candidate_cost(th, cost, on_border, h, static_cast<Index>(o), th.out_target[k]);
-        candidates[k] = std::isnan(c) ? refused_candidate : key(c, h);
+        // NaN, refused: border vertices move along the border only
+        const double c = border && !th.is_border_edge(h) ? std::numeric_limits<double>::quiet_NaN()
+                                                         : cost_from_o(th.out_target[k]);
+        if(std::isnan(c))
+          candidates[k] = refused_candidate;
+        else
+        {
+          const std::uint64_t image = Candidate_key::image(c);
+          candidates[k] = key.of_image(image, h);
+          if(low_bits != nullptr)
+            low_bits[k] = key.low_bits_of_image(image);
+        }
       }
+    }
   }, 1024);
   return candidates;
+}
+
+// Sorts keys whose low bits are given, one per key in the same order (sort_candidates()).
+// While sorted, each key names its place in `c` instead of its halfedge, so that the runs of
+// equal cost bits find their low bits and halfedges in two arrays written in order. Why: the
+// runs' costs were computed again before, two quadrics and a position read at random places
+// per key, which was most of the sort's time on the Loop-subdivided horse of 3.1M vertices
+// (2.2 of its 15.8 s on two threads); low bits kept per halfedge instead were scattered writes
+// over the 6 n candidates, which cost about as much as they saved.
+inline void sort_front(Key_array& c, const Low_bits& low, const Candidate_key& key)
+{
+  const std::size_t n = c.size();
+  Index_array halfedge(n);
+  parallel_for_blocks(n, [&](std::size_t first, std::size_t last) {
+    for(std::size_t i = first; i < last; ++i)
+    {
+      halfedge[i] = key.halfedge(c[i]);
+      c[i] = (key.cost_part(c[i]) << key.halfedge_bits()) | i;   // i < n <= the halfedges: it fits
+    }
+  });
+  sort_candidates(c.data(), n, key, [&](Index i) { return (std::uint64_t(low[i]) << 32) | halfedge[i]; });
+  parallel_for_blocks(n, [&](std::size_t first, std::size_t last) {
+    for(std::size_t i = first; i < last; ++i)
+      c[i] = (key.cost_part(c[i]) << key.halfedge_bits()) | halfedge[key.halfedge(c[i])];
+  });
 }
 
 // The cheapest candidate collapses of one level, sorted (at least `wanted` of them, unless there
@@ -759,16 +840,18 @@ Key_array sorted_candidates(const Triangle_halfedges& th, const CostOfRows& cost
   for(Index h = static_cast<Index>(3 * th.nf); h < nh; ++h)   // the border halfedges come last
     on_border[th.source[h]] = on_border[th.target[h]] = 1;
   key = Candidate_key(nh);
-  Key_array candidates = candidate_keys(th, cost, on_border, key);
+  Low_bits low(nh), front_low;                              // low: written for every candidate not refused
+  Key_array candidates = candidate_keys(th, cost, on_border, key, low.data());
   // Only the cheapest `wanted` are sorted (the level considers them first; of about 6 n
   // candidates it takes n), with every candidate that shares their leading cost bits (the
   // exact costs order runs of equal cost bits): a true prefix of the full order; the rest is
   // computed again and sorted if ever needed (sort_candidate_rest(): a few small levels of a
   // decomposition). Dragon: 18 % of a decomposition in the sort before the partial sort; its
   // std::nth_element then took 10 % on two threads, sequential.
-  Key_array front = cheapest_keys(candidates, key, refused_candidate, wanted, total, limit);
+  Key_array front = cheapest_keys(candidates, key, refused_candidate, wanted, total, limit, &low, &front_low);
   Key_array().swap(candidates);
-  sort_candidates(front.data(), front.size(), key, [&](Index h) { return candidate_cost(th, cost, on_border, h); });
+  Low_bits().swap(low);
+  sort_front(front, front_low, key);
   return front;
 }
 
@@ -778,9 +861,10 @@ template <typename CostOfRows>
 void sort_candidate_rest(const Triangle_halfedges& th, const CostOfRows& cost, const std::vector<unsigned char>& on_border,
                          const Candidate_key& key, std::uint64_t limit, Key_array& candidates)
 {
-  Key_array rest = candidate_keys(th, cost, on_border, key);
-  keys_above(rest, key, refused_candidate, limit);
-  sort_candidates(rest.data(), rest.size(), key, [&](Index h) { return candidate_cost(th, cost, on_border, h); });
+  Low_bits low(th.source.size());
+  Key_array rest = candidate_keys(th, cost, on_border, key, low.data());
+  keys_above(rest, key, refused_candidate, limit, &low);
+  sort_front(rest, low, key);
   candidates.insert(candidates.end(), rest.begin(), rest.end());
 }
 
