@@ -291,6 +291,79 @@ void sort_candidates(std::uint64_t* c, std::size_t n, const Candidate_key& key, 
 // level's collapses, which the vertex splits of an adaptive reconstruction rely on.
 enum Selection_lock : unsigned char { in_a_taken_star = 1, taken_target = 2 };
 
+// The number of faces of every row of M_{k+1}, from those of M_k (its halfedges `th`) and a
+// level's collapses, taken by the rule above: a collapse o -> e gives e the faces of o that stay
+// (renamed) and takes a face from e and from the third vertex of each face it removes (those
+// holding o and e); the other rows keep theirs. Collapses may be told in parallel: the targets
+// are distinct and no source is another collapse's target or third vertex (it would lie in a
+// taken star); a third vertex may lie on several collapses' removed faces (atomic counts).
+class Corner_counts
+{
+public:
+  explicit Corner_counts(const Triangle_halfedges& th) : m_count(new std::atomic<Index>[th.n])
+  {
+    parallel_for_blocks(th.n, [&](std::size_t first, std::size_t last) {
+      for(std::size_t v = first; v < last; ++v)
+      {
+        Index end = th.out_offsets[v + 1];               // a row's border halfedges (no face) come last
+        while(end > th.out_offsets[v] && !th.has_face(th.out[end - 1]))
+          --end;
+        m_count[v].store(end - th.out_offsets[v], std::memory_order_relaxed);
+      }
+    });
+  }
+  // a face of a collapse o -> e removed, whose third vertex (neither o nor e) is x
+  void face_removed(Index x) { m_count[x].fetch_sub(1, std::memory_order_relaxed); }
+  // the collapse o -> e, which renamed `renamed` faces of o and removed `removed` (unsigned
+  // arithmetic: e's count comes out right whatever the order of the additions)
+  void collapsed(Index e, Index renamed, Index removed) { m_count[e].fetch_add(renamed - removed, std::memory_order_relaxed); }
+  // the counts of the rows `kept` (those of M_k that stay, in the order of M_{k+1}'s rows)
+  void rows_after(const std::vector<Index>& kept, std::vector<Index>& corners) const
+  {
+    corners.resize(kept.size());
+    parallel_for_blocks(kept.size(), [&](std::size_t first, std::size_t last) {
+      for(std::size_t j = first; j < last; ++j)
+        corners[j] = m_count[kept[j]].load(std::memory_order_relaxed);
+    });
+  }
+
+private:
+  std::unique_ptr<std::atomic<Index>[]> m_count;
+};
+
+// Corner_counts of the collapses, the faces read from M_k's face array `tri` (the corners of the
+// sources may be renamed already: only their neighbours' are read). decompose() tells them
+// from the loop that writes its records (collapse_face_array()).
+inline void corners_after_collapses(const Triangle_halfedges& th, const std::vector<Index>& tri,
+                                    const std::vector<Collapse>& collapses, const std::vector<Index>& kept,
+                                    std::vector<Index>& corners)
+{
+  Corner_counts counts(th);
+  parallel_for_blocks(collapses.size(), [&](std::size_t first, std::size_t last) {
+    for(std::size_t i = first; i < last; ++i)
+    {
+      const Collapse& c = collapses[i];
+      Index renamed = 0, removed = 0;
+      for(Index q = th.out_offsets[c.o]; q < th.out_offsets[c.o + 1]; ++q)
+      {
+        const Index g = th.out[q];                       // o -> a in face g / 3
+        if(!th.has_face(g))
+          continue;
+        const Index a = tri[Triangle_halfedges::next_in_face(g)], b = tri[Triangle_halfedges::prev_in_face(g)];
+        if(a == c.e || b == c.e)
+        {
+          ++removed;
+          counts.face_removed(a == c.e ? b : a);
+        }
+        else
+          ++renamed;
+      }
+      counts.collapsed(c.e, renamed, removed);
+    }
+  }, 1024);
+  counts.rows_after(kept, corners);
+}
+
 // Whether o -> e crosses a taken collapse o' -> e': e a neighbour of o' and e' one of o.
 // `is_taken_target(y)`: whether y is the target of a taken collapse, `source_of(y)` its source.
 template <typename IsTakenTarget, typename SourceOf>
