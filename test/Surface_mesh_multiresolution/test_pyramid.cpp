@@ -1466,20 +1466,6 @@ TEST_CASE("the halfedges of a level derived from the level before and its collap
       for(std::size_t v = 0; v < n; ++v)
         if(target_of[v] == none)
           next_xyz.insert(next_xyz.end(), xyz.begin() + 3 * v, xyz.begin() + 3 * v + 3);
-      // the faces of every row after, derived from the collapses as decompose() does (on every
-      // other level; counted from the faces on the others): those of the face array
-      if(levels % 2 == 0)
-      {
-        std::vector<Index> kept;
-        for(std::size_t v = 0; v < n; ++v)
-          if(target_of[v] == none)
-            kept.push_back(static_cast<Index>(v));
-        SMR::internal::corners_after_collapses(th, tri, accepted, kept, change.corners);
-        std::vector<Index> counted(rows, 0);
-        for(Index v : next_tri)
-          ++counted[v];
-        CHECK(change.corners == counted);
-      }
       th.keep_twins_only();                                    // what decompose() keeps of the level before
       SMR::internal::Triangle_halfedges derived, built;
       CHECK(derived.build_after_collapses(std::move(th), std::move(change), rows, next_tri, true));

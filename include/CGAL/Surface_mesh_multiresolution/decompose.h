@@ -326,31 +326,13 @@ void Decomposition<TriangleMesh, CostModel, Visitor>::collapse_face_array(Pyrami
     const Index h = th.out[q];
     return m_faces[Triangle_halfedges::next_in_face(h)] == e || m_faces[Triangle_halfedges::prev_in_face(h)] == e;
   };
-  // the number of faces of every row of M_{k+1}, for its halfedges, told by this loop, which
-  // reads the faces anyway: they were counted over the whole face array at every level (a pass
-  // over the corners, an increment at a scattered place for each; a loop of its own over the
-  // collapses, reading their faces again, cost as much)
-  Corner_counts corners(th);
   parallel_for_blocks(na, [&](std::size_t first, std::size_t last) {
     for(std::size_t i = first; i < last; ++i)
     {
       const Collapse& c = m_accepted[i];
-      Index removed = 0;
       for(Index q = th.out_offsets[c.o]; q < th.out_offsets[c.o + 1]; ++q)
-      {
-        const Index g = th.out[q];
-        if(!th.has_face(g))
-          continue;
-        const Index a = m_faces[Triangle_halfedges::next_in_face(g)], b = m_faces[Triangle_halfedges::prev_in_face(g)];
-        if(a == c.e || b == c.e)                           // removed (the test of holds_target())
-        {
-          ++removed;
-          corners.face_removed(a == c.e ? b : a);
-        }
-        else
-          ++first_renamed[i + 1];                          // a face (o, a, b) that stays
-      }
-      corners.collapsed(c.e, first_renamed[i + 1], removed);
+        if(th.has_face(th.out[q]) && !holds_target(q, c.e))   // a face (o, a, b) that stays
+          ++first_renamed[i + 1];
     }
   }, 1024);
   std::partial_sum(first_renamed.begin(), first_renamed.end(), first_renamed.begin());
@@ -378,7 +360,6 @@ void Decomposition<TriangleMesh, CostModel, Visitor>::collapse_face_array(Pyrami
       }
     }
   }, 1024);
-  corners.rows_after(level.even_rows, m_collapsed.corners);
   take_out_removed_faces(level);
 }
 

@@ -34,13 +34,11 @@ namespace internal {
 // (a stream) and counts, then writes, only the corners of its sources, in face order, so the
 // lists are those of the sequential sort for any number of tasks (no atomics; with one
 // histogram per task the memory would grow with the tasks times the vertices). `room`, when
-// given (n entries), leaves room[v] places at the end of v's row, not written here. `corners`,
-// when given (n entries), is the number of corners of every vertex: the counting pass is skipped.
+// given (n entries), leaves room[v] places at the end of v's row, not written here.
 inline void list_face_halfedges_by_source(std::size_t n, const std::vector<Index>& tri, bool with_apexes,
                                           std::vector<Index>& offsets, Index_array& out,
                                           Index_array& out_target, Index_array& out_apex,
-                                          const std::vector<Index>* room = nullptr,
-                                          const std::vector<Index>* corners = nullptr)
+                                          const std::vector<Index>* room = nullptr)
 {
   const Index h0 = static_cast<Index>(tri.size());
   // a range per thread (at most 8: each reads all corners), one more per 2^15 corners
@@ -52,23 +50,11 @@ inline void list_face_halfedges_by_source(std::size_t n, const std::vector<Index
     }, 1);
   };
   offsets.assign(n + 1, 0);
-  if(corners != nullptr)                                   // the counts known (Collapsed_faces::corners)
-    std::copy(corners->begin(), corners->end(), offsets.begin() + 1);
-  else
-    for_ranges([&](Index lo, Index span) {
-      for(Index h = 0; h < h0; ++h)
-        if(tri[h] - lo < span)                             // (unsigned: below lo wraps around)
-          ++offsets[tri[h] + 1];
-    });
-#ifndef CGAL_NO_ASSERTIONS
-  if(corners != nullptr)                                   // the counts given are those of the faces
-  {
-    std::vector<Index> counted(n, 0);
+  for_ranges([&](Index lo, Index span) {
     for(Index h = 0; h < h0; ++h)
-      ++counted[tri[h]];
-    CGAL_assertion(counted == *corners);
-  }
-#endif
+      if(tri[h] - lo < span)                               // (unsigned: below lo wraps around)
+        ++offsets[tri[h] + 1];
+  });
   for(std::size_t i = 0; i < n; ++i)
     offsets[i + 1] += offsets[i] + (room ? (*room)[i] : Index(0));
   out.resize(offsets[n]);
@@ -115,9 +101,6 @@ struct Collapsed_faces
   // per face: its number after if kept, else removed_face + the corner where its collapsed
   // halfedge starts (one array: one cache miss per neighbour read)
   Index_array face_after;
-  // per row after: the number of its faces, if known (the collapses give them: see
-  // Decomposition::count_corners_after()), else empty (counted from the face array)
-  std::vector<Index> corners;
   static constexpr Index removed_face = Index(1) << 31;
   static bool is_removed(Index a) { return (a & removed_face) != 0; }
   static Index collapsed_corner(Index a) { return a & ~removed_face; }
@@ -267,9 +250,6 @@ public:
     }, 4096);
     // freed before the rows are listed: the memory of this build peaks no higher than build()'s
     before = Triangle_halfedges();
-    std::vector<Index> corners;
-    if(c.corners.size() == nv)
-      corners.swap(c.corners);
     c = Collapsed_faces();
     if(failed.load())
     {
@@ -290,7 +270,7 @@ public:
         ++slot[tri[next_in_face(h)]];                // the border halfedge leaves the target of its twin
     }
     list_face_halfedges_by_source(n, tri, with_apexes, out_offsets, out, out_target, out_apex,
-                                  border_twins.empty() ? nullptr : &slot, corners.empty() ? nullptr : &corners);
+                                  border_twins.empty() ? nullptr : &slot);
     set_ends(tri, border_twins.size());
     if(!border_twins.empty())
     {
