@@ -1000,7 +1000,7 @@ TEST_CASE("candidate keys are the same with and without the cost model's prefetc
   const auto without = SMR::internal::candidate_keys(th, [&](Index o, Index e) { return quadrics.cost(o, e); }, on_border, key);
   CHECK(std::vector<std::uint64_t>(with_hint.begin(), with_hint.end()) == std::vector<std::uint64_t>(without.begin(), without.end()));
   // the quadrics' costs of a whole 1-ring (Q_o read once) are those of cost(o, e), bit for bit,
-  // and the low bits kept per halfedge are those of each candidate's cost
+  // and the low bits kept per candidate are those of its cost
   struct Ring_cost
   {
     SMR::internal::Optional<double> operator()(Index o, Index e) const { return q.cost(o, e); }
@@ -1135,7 +1135,7 @@ TEST_CASE("the candidates' radix sort orders by (cost, halfedge) like a comparis
     if(trial % 2 == 1 || trial == 6)   // the input order does not matter
       std::shuffle(c.begin(), c.end(), std::mt19937(trial));
     // runs of equal cost bits: by the bits of the cost the key leaves out, then by halfedge
-    auto cost = [&](SMR::internal::Index h) { return (std::uint64_t(key.low_bits(cost_of[h])) << 32) | h; };
+    auto tie_order = [&](SMR::internal::Index h) { return (std::uint64_t(key.low_bits(cost_of[h])) << 32) | h; };
     // the front of cheapest_keys() (refused keys mixed in) is a true prefix of the order:
     // sorting it and the rest (keys_above()) apart gives the full order, and it holds at least
     // the wanted keys
@@ -1158,8 +1158,8 @@ TEST_CASE("the candidates' radix sort orders by (cost, halfedge) like a comparis
         REQUIRE(key.leading_bits(x) <= limit);
       SMR::internal::keys_above(m, key, refused, limit);
       REQUIRE(front.size() + m.size() == c.size());
-      SMR::internal::sort_candidates(front.data(), front.size(), key, cost);
-      SMR::internal::sort_candidates(m.data(), m.size(), key, cost);
+      SMR::internal::sort_candidates(front.data(), front.size(), key, tie_order);
+      SMR::internal::sort_candidates(m.data(), m.size(), key, tie_order);
       front.insert(front.end(), m.begin(), m.end());
       for(std::size_t i = 0; i < front.size(); ++i)
         REQUIRE(key.halfedge(front[i]) == expected[i]);
@@ -1191,7 +1191,7 @@ TEST_CASE("the candidates' radix sort orders by (cost, halfedge) like a comparis
       for(std::size_t i = 0; i < front2.size(); ++i)
         REQUIRE(key.halfedge(front2[i]) == expected[i]);
     }
-    SMR::internal::sort_candidates(c.data(), c.size(), key, cost);
+    SMR::internal::sort_candidates(c.data(), c.size(), key, tie_order);
     REQUIRE(c.size() == expected.size());
     for(std::size_t i = 0; i < c.size(); ++i)
       REQUIRE(key.halfedge(c[i]) == expected[i]);

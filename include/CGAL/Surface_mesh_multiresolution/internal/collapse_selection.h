@@ -758,11 +758,11 @@ inline void keys_above(Key_array& c, const Candidate_key& key, std::uint64_t ref
 // of the vertices' lists of outgoing halfedges, `refused_candidate` for those that would move a border
 // vertex off the border and those the cost model refuses; `low_bits` (if given, one per
 // candidate, in the same order): the low bits of each candidate's cost (Candidate_key::low_bits()).
-// Computed in parallel (TBB), vertex by vertex (the quadric and position of o are read once for
-// its 1-ring, Plane_quadrics::costs_from(); those of its neighbours are near in memory), each
-// into its own slot. The operands of the cost of the
-// candidate `cost_prefetch_distance` places ahead are prefetched: on the dragon the costs
-// waited on the loads of Q_e and p_e (46 % of their samples), one after the other.
+// Computed in parallel (TBB), vertex by vertex (the quadric of o is read once for its 1-ring,
+// Plane_quadrics::costs_from(); those of its neighbours are near in memory), each into its own
+// slot. The operands of the cost of the candidate `cost_prefetch_distance` places ahead are
+// prefetched: on the dragon the costs waited on the loads of Q_e and p_e (46 % of their
+// samples), one after the other.
 constexpr Index cost_prefetch_distance = 16;
 
 template <typename CostOfRows>
