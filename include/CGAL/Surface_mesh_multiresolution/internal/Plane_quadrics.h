@@ -27,7 +27,7 @@ namespace internal {
 // the sum of the plane quadrics of its faces (unit normal of the face, plane through it) and,
 // for every border edge at the vertex, 100 times the quadric of the plane through that edge
 // perpendicular to its face; after a collapse o -> e, Q_e becomes Q_o + Q_e. The cost of
-// moving o onto e is (Q_o + Q_e)(p_e). Quadrics and positions are stored by row of the
+// moving o onto e is (Q_o + Q_e)(p_e) (evaluated as Q_o(p_e) + Q_e(p_e), see cost()). Quadrics and positions are stored by row of the
 // current level (the vertices of M_k in increasing input number), so that the cost of a
 // candidate reads two contiguous records without any index translation.
 // Why by hand: SMS evaluates the same numbers through an `Edge_profile` built per candidate on
@@ -85,26 +85,32 @@ public:
         copy_values(sum, size, m_q.data() + size * v);
       }
     });
+    evaluate_own_errors();
   }
 
-  // a new level: xyz holds the positions of its rows (the quadrics follow them, see retain())
-  void begin_level(const std::vector<double>& xyz) { m_xyz = xyz.data(); }
+  // A new level: xyz holds the positions of its rows (the quadrics follow them, see retain()).
+  void begin_level(const std::vector<double>& xyz)
+  {
+    if(m_xyz != xyz.data() || !m_own_current)
+    {
+      m_xyz = xyz.data();
+      evaluate_own_errors();
+    }
+  }
 
-  // cost of moving row o onto row e
+  // Cost of moving row o onto row e: (Q_o + Q_e)(p_e), evaluated as Q_o(p_e) + Q_e(p_e) with
+  // Q_e(p_e) from begin_level(). Equal in exact arithmetic; the rounding differs from SMS's
+  // (which sums the matrices first) by an ulp or so. Why: a candidate then reads p_e and one
+  // double of e (the costs of every level's 6 n candidates read Q_e, 80 bytes at a random row,
+  // beside p_e: two to three cache lines instead of one to two).
   Optional<double> cost(Index o, Index e) const
   {
-    const double* a = quadric(o);
-    const double* b = quadric(e);
-    const double* x = point(e);
-    double s[size];
-    for(std::size_t i = 0; i < size; ++i)
-      s[i] = a[i] + b[i];
-    return Optional<double>(evaluate(s, x));
+    return Optional<double>(evaluate(quadric(o), point(e)) + m_own[e]);
   }
 
   // The costs of moving row o onto rows e, Q_o read once: candidate_keys() computes the costs of
   // a whole 1-ring in a row, where a call per halfedge (not inlined there) read Q_o again for
-  // every neighbour. The same additions and products as cost(): the same bits (a test compares).
+  // every neighbour. The same operations as cost(): the same bits (a test compares).
   class Costs_from
   {
   public:
@@ -116,11 +122,7 @@ public:
     }
     double operator()(Index e) const
     {
-      const double* b = m_q.quadric(e);
-      double s[size];
-      for(std::size_t i = 0; i < size; ++i)
-        s[i] = m_a[i] + b[i];
-      return evaluate(s, m_q.point(e));
+      return evaluate(m_a, m_q.point(e)) + m_q.m_own[e];
     }
 
   private:
@@ -129,23 +131,32 @@ public:
   };
   Costs_from costs_from(Index o) const { return Costs_from(*this, o); }
 
-  // a hint that cost(., e) will be read soon (candidate_keys()): the cache lines of Q_e (80
-  // bytes at a multiple of 16: always two lines) and of p_e (24 bytes: one or two)
+  // a hint that cost(., e) will be read soon (candidate_keys()): the cache lines of p_e (24
+  // bytes: one or two) and of Q_e(p_e)
   void prefetch_target(Index e) const
   {
-    const char* q = reinterpret_cast<const char*>(quadric(e));
-    prefetch(q);
-    prefetch(q + 64);
     prefetch(point(e));
     prefetch(point(e) + 2);
+    prefetch(m_own.data() + e);
   }
 
   void collapse(Index o, Index e)
   {
-    const double* a = quadric(o);
-    double* b = m_q.data() + size * std::size_t(e);
-    for(std::size_t i = 0; i < size; ++i)
-      b[i] = a[i] + b[i];
+    m_own_current = false;
+    add_quadric(o, e);
+  }
+
+  // Q_e += Q_o for a level's accepted collapses ({o, e} each), in parallel: the selection
+  // locks the closed 1-ring of each source, so no target is taken twice nor is any source's,
+  // and each sum is the one of the sequential loop
+  template <typename Collapses>
+  void collapse_all(const Collapses& accepted)
+  {
+    m_own_current = false;
+    parallel_for_blocks(accepted.size(), [&](std::size_t first, std::size_t last) {
+      for(std::size_t i = first; i < last; ++i)
+        add_quadric(accepted[i].o, accepted[i].e);
+    });
   }
 
   // keeps the quadrics of the rows `kept` (increasing), in order: the rows of the next level
@@ -158,6 +169,7 @@ public:
         copy_values(m_q.data() + size * kept[j], size, q.data() + size * j);
     });
     m_q.swap(q);
+    m_own_current = false;
   }
 
   // x^T Q x for the homogeneous point (x, 1)
@@ -173,6 +185,26 @@ public:
 
 private:
   const double* point(Index v) const { return m_xyz + 3 * std::size_t(v); }
+
+  void add_quadric(Index o, Index e)
+  {
+    const double* a = quadric(o);
+    double* b = m_q.data() + size * std::size_t(e);
+    for(std::size_t i = 0; i < size; ++i)
+      b[i] = a[i] + b[i];
+  }
+
+  // m_own[v] = Q_v(p_v) for every row v, once per level (read by cost())
+  void evaluate_own_errors()
+  {
+    const std::size_t n = m_q.size() / size;
+    m_own.resize(n);
+    parallel_for_blocks(n, [&](std::size_t first, std::size_t last) {
+      for(std::size_t v = first; v < last; ++v)
+        m_own[v] = evaluate(quadric(static_cast<Index>(v)), point(static_cast<Index>(v)));
+    });
+    m_own_current = true;
+  }
 
   // the plane (n, -n.p) of the face whose first halfedge is h0 (n: its unit normal); CGAL
   // takes p = target(h), q = target(next(h)), r = source(h) of the face's halfedge
@@ -234,6 +266,8 @@ private:
 
   const double* m_xyz = nullptr;  // 3 per row
   Uninitialized_vector<double> m_q;   // 10 coefficients per row
+  Uninitialized_vector<double> m_own; // per row v: Q_v(p_v) (evaluate_own_errors())
+  bool m_own_current = false;         // whether m_own follows the quadrics and positions
 };
 
 } // namespace internal

@@ -59,18 +59,6 @@ struct Plane_quadric_collapse_cost : Plane_quadrics
 
   void begin_level(const std::vector<Index>&, const std::vector<double>& xyz) { Plane_quadrics::begin_level(xyz); }
 
-  // Q_e += Q_o for a level's accepted collapses, in parallel: the selection locks the closed
-  // 1-ring of each source, so no target is taken twice nor is any source's, and each sum is
-  // the one of the sequential loop
-  template <typename Collapses>
-  void collapse_all(const Collapses& accepted)
-  {
-    parallel_for_blocks(accepted.size(), [&](std::size_t first, std::size_t last) {
-      for(std::size_t i = first; i < last; ++i)
-        collapse(accepted[i].o, accepted[i].e);
-    });
-  }
-
   // the quadrics of the rows that stay, by row of the next level
   void end_level(const std::vector<Index>& even_rows) { retain(even_rows); }
 };
