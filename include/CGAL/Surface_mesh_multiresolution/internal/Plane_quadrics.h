@@ -14,6 +14,8 @@
 #include <CGAL/Surface_mesh_multiresolution/internal/parallel.h>
 #include <CGAL/Surface_mesh_multiresolution/internal/Triangle_halfedges.h>
 
+#include <CGAL/assertions.h>
+
 #include <algorithm>
 #include <cmath>
 #include <vector>
@@ -105,6 +107,7 @@ public:
   // beside p_e: two to three cache lines instead of one to two).
   Optional<double> cost(Index o, Index e) const
   {
+    CGAL_assertion(m_own_current);                     // begin_level() after the last collapse
     return Optional<double>(evaluate(quadric(o), point(e)) + m_own[e]);
   }
 
@@ -116,6 +119,7 @@ public:
   public:
     Costs_from(const Plane_quadrics& q, Index o) : m_q(q)
     {
+      CGAL_assertion(q.m_own_current);
       const double* a = q.quadric(o);
       for(std::size_t i = 0; i < size; ++i)
         m_a[i] = a[i];
