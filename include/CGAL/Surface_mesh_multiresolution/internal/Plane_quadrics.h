@@ -157,6 +157,7 @@ public:
   void collapse_all(const Collapses& accepted)
   {
     m_own_current = false;
+    Uninitialized_vector<double>().swap(m_own);           // (evaluated again for the next level)
     parallel_for_blocks(accepted.size(), [&](std::size_t first, std::size_t last) {
       for(std::size_t i = first; i < last; ++i)
         add_quadric(accepted[i].o, accepted[i].e);
