@@ -29,9 +29,10 @@ namespace internal {
 // the sum of the plane quadrics of its faces (unit normal of the face, plane through it) and,
 // for every border edge at the vertex, 100 times the quadric of the plane through that edge
 // perpendicular to its face; after a collapse o -> e, Q_e becomes Q_o + Q_e. The cost of
-// moving o onto e is (Q_o + Q_e)(p_e) (evaluated as Q_o(p_e) + Q_e(p_e), see cost()). Quadrics and positions are stored by row of the
-// current level (the vertices of M_k in increasing input number), so that the cost of a
-// candidate reads two contiguous records without any index translation.
+// moving o onto e is (Q_o + Q_e)(p_e), evaluated as Q_o(p_e) + Q_e(p_e) (see cost()).
+// Quadrics, positions and Q_v(p_v) are stored by row of the current level (the vertices of
+// M_k in increasing input number), so that a cost reads contiguous records without any index
+// translation.
 // Why by hand: SMS evaluates the same numbers through an `Edge_profile` built per candidate on
 // a halfedge mesh and stores 16 doubles per vertex; here a quadric is its 10 distinct
 // coefficients, read directly from contiguous arrays (the decomposition needs no working
