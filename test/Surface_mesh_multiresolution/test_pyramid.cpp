@@ -1198,6 +1198,57 @@ TEST_CASE("the candidates' radix sort orders by (cost, halfedge) like a comparis
   }
 }
 
+
+TEST_CASE("the front of the candidates holds the wanted cheapest ones when their sample misleads", "[pyramid][cost]")
+{
+  // 40,000 keys: the sampled ones (every 8th, from the 4th) are the cheapest, so the sampled
+  // limit passes too few keys for a wanted quarter; the exact selection takes over. And a
+  // sample that does not mislead (costs in a shuffled order) gives a front a little larger than
+  // wanted, with the same prefix property.
+  const std::size_t n = 40000;
+  const SMR::internal::Candidate_key key(n);
+  constexpr std::uint64_t refused = ~std::uint64_t(0);
+  for(bool misleading : {true, false})
+  {
+    std::vector<double> cost_of(n);
+    for(std::size_t i = 0; i < n; ++i)
+      cost_of[i] = i % 8 == 4 ? 1. + double((i * 7919) % n) / double(n) : 1000. + double((i * 7919) % n);
+    SMR::internal::Key_array c;
+    for(std::size_t i = 0; i < n; ++i)
+      c.push_back(key(cost_of[i], static_cast<SMR::internal::Index>(i)));
+    if(!misleading)
+      std::shuffle(c.begin(), c.end(), std::mt19937(3));
+    std::vector<std::uint64_t> sorted(c.begin(), c.end());
+    std::sort(sorted.begin(), sorted.end());
+    const std::size_t wanted = n / 4;
+    const std::uint64_t exact_limit = key.leading_bits(sorted[wanted - 1]);
+    std::size_t total = 0;
+    std::uint64_t limit = 0;
+    SMR::internal::Key_array rest = c;
+    SMR::internal::Key_array front = SMR::internal::cheapest_keys(rest, key, refused, wanted, total, limit);
+    CHECK(total == n);
+    REQUIRE(front.size() >= wanted);
+    CHECK(limit >= exact_limit);
+    if(misleading)
+      CHECK(limit == exact_limit);                       // selected exactly
+    else
+    {
+      CHECK(limit > exact_limit);                        // sampled: a few percent more
+      CHECK(front.size() < wanted + wanted / 4);
+    }
+    // a true prefix: every front key is below every other key, and the front is in c's order
+    SMR::internal::keys_above(rest, key, refused, limit);
+    REQUIRE(front.size() + rest.size() == n);
+    const std::uint64_t largest_in_front = *std::max_element(front.begin(), front.end());
+    for(std::uint64_t x : rest)
+      REQUIRE(x > largest_in_front);
+    std::size_t q = 0;
+    for(std::uint64_t x : c)
+      if(q < front.size() && front[q] == x)
+        ++q;
+    CHECK(q == front.size());
+  }
+}
 TEST_CASE("the index-based link condition agrees with CGAL's on every edge", "[pyramid][link]")
 {
   std::vector<Mesh> meshes;

@@ -646,15 +646,45 @@ void keep_keys(Key_array& c, Low_bits* low, const Keep& keep)
     low->resize(w);
 }
 
+// A limit on the leading bits (Candidate_key::leading_bits()) of the keys of `c` under which
+// at least `wanted` of them lie, estimated from every 8th to 32nd key (fewer for more keys; a
+// fixed choice: deterministic), or ~0 where `c` is too short to sample (32,768 keys). The
+// sample rank is the wanted one plus four standard deviations of a binomial count, so that
+// the front of cheapest_keys() is a few percent larger than `wanted` (5 % on the dragon's
+// first levels, where a sorted key costs more than a sampled one) and very rarely smaller
+// (cheapest_keys() then selects exactly).
+inline std::uint64_t sampled_limit(const Key_array& c, const Candidate_key& key, std::uint64_t refused, std::size_t wanted)
+{
+  const std::size_t n = c.size();
+  if(n < (std::size_t(1) << 15))
+    return ~std::uint64_t(0);
+  const std::size_t stride = n >= (std::size_t(1) << 21) ? 32 : n >= (std::size_t(1) << 20) ? 16 : 8;
+  std::vector<std::uint64_t> sample;
+  sample.reserve(n / stride);
+  for(std::size_t i = stride / 2; i < n; i += stride)
+    if(c[i] != refused)
+      sample.push_back(key.leading_bits(c[i]));
+  const double expected = double(wanted) / double(stride);   // the wanted key's rank among the samples
+  const std::size_t rank = static_cast<std::size_t>(expected + 4. * std::sqrt(expected) + 8.);
+  if(rank >= sample.size())
+    return ~std::uint64_t(0);
+  std::nth_element(sample.begin(), sample.begin() + std::ptrdiff_t(rank), sample.end());
+  return sample[rank];
+}
+
 // The cheapest candidate keys of `c`, in their order in `c`, without the `refused` ones: the
-// keys whose leading 24 bits (Candidate_key::leading_bits()) are at most `limit`, which is
-// those of the wanted-th cheapest key (all keys, limit = ~0, when wanted is at least half of
-// them; `c` is then emptied). A true prefix of the sorted order, runs of equal cost bits
-// included, whatever the order inside it; `total`: the number of keys not refused. The other
-// keys stay in `c` (keys_above() extracts them). Why by hand: std::nth_element over the 6 n
-// candidates was sequential (10 % of the dragon's decomposition on two threads); this is a
-// radix select (two histograms of 12-bit digits in fixed blocks, then a scatter of the front in
-// block order), parallel and deterministic. The front is a new array of about n keys, `c` is
+// keys whose leading 24 bits (Candidate_key::leading_bits()) are at most `limit`, at least
+// the `wanted` cheapest (all keys, limit = ~0, when wanted is at least half of them; `c` is
+// then emptied). A true prefix of the sorted order, runs of equal cost bits included, whatever
+// the order inside it; `total`: the number of keys not refused. The other keys stay in `c`
+// (keys_above() extracts them). The limit is sampled (sampled_limit()), then checked by a
+// count of the keys under it, which also numbers each block's part of the front; where the
+// sample fell short (or `c` is short), it is that of the wanted-th cheapest key, found by a
+// radix select (two histograms of 12-bit digits in fixed blocks). Then the front is scattered
+// in block order: parallel and deterministic. Why by hand: std::nth_element over the 6 n
+// candidates was sequential (10 % of the dragon's decomposition on two threads). Why sampled:
+// the histograms' increments of nearby keys (similar costs: the same bucket) waited on each
+// other; the count is a comparison per key. The front is a new array of about n keys, `c` is
 // left as it is (compacting the rest in place and moving the front before it were sequential
 // passes over the 6 n keys: a third of the select's time). `low` (if given): the low bits of
 // every key of `c`, whose front's are then written to `front_low` (and `low` is emptied with `c`).
@@ -669,25 +699,15 @@ inline Key_array cheapest_keys(Key_array& c, const Candidate_key& key, std::uint
   const std::size_t blocks = (n + block - 1) / block;
   const int shift2 = key.leading_bits_shift(), shift1 = shift2 + digit_bits;   // the two digits of the leading bits
   const std::uint64_t mask = buckets - 1;
-  std::vector<std::size_t> hist1(blocks * buckets), hist2(blocks * buckets), kept(blocks);
+  const std::size_t rank = (std::max)(wanted, std::size_t(1));
+  std::vector<std::size_t> kept(blocks), offset(blocks + 1, 0);
   auto for_blocks = [&](const auto& f) {
     parallel_for_blocks(blocks, [&](std::size_t first, std::size_t last) {
       for(std::size_t b = first; b < last; ++b)
         f(b, b * block, (std::min)(n, (b + 1) * block));
     }, 1);
   };
-  for_blocks([&](std::size_t b, std::size_t first, std::size_t last) {
-    std::size_t* h = hist1.data() + b * buckets;
-    std::size_t k = 0;
-    for(std::size_t i = first; i < last; ++i)
-      if(c[i] != refused) { ++h[(c[i] >> shift1) & mask]; ++k; }
-    kept[b] = k;
-  });
-  total = 0;
-  for(std::size_t k : kept)
-    total += k;
-  if(2 * (std::max)(wanted, std::size_t(1)) >= total)
-  {
+  auto take_all = [&] {
     limit = ~std::uint64_t(0);
     keep_keys(c, low, [&](std::uint64_t x) { return x != refused; });   // the order kept
     Key_array all;
@@ -695,53 +715,107 @@ inline Key_array cheapest_keys(Key_array& c, const Candidate_key& key, std::uint
     if(low != nullptr)
       front_low->swap(*low);
     return all;
+  };
+  limit = sampled_limit(c, key, refused, wanted);
+  bool counted = false;
+  if(limit != ~std::uint64_t(0))
+  {
+    const std::uint64_t* keys = c.data();
+    const int shift = shift2;
+    const std::uint64_t lim = limit;
+    std::vector<std::size_t> under(blocks);
+    for_blocks([&](std::size_t b, std::size_t first, std::size_t last) {
+      std::size_t k = 0, u = 0;
+      for(std::size_t i = first; i < last; ++i)
+      {
+        const std::uint64_t x = keys[i];
+        k += x != refused;
+        u += (x != refused) & ((x >> shift) <= lim);
+      }
+      kept[b] = k;
+      under[b] = u;
+    });
+    total = 0;
+    for(std::size_t b = 0; b < blocks; ++b)
+    {
+      total += kept[b];
+      offset[b + 1] = offset[b] + under[b];
+    }
+    if(2 * rank >= total)
+      return take_all();
+    counted = offset[blocks] >= rank;
   }
-  // the bucket of the wanted-th key (1-based), first by the leading digit, then by the next
-  auto bucket_of_rank = [&](const std::vector<std::size_t>& hist, std::size_t rank, std::size_t& before) {
-    for(std::size_t v = 0; v < buckets; ++v)
+  if(!counted)
+  {
+    std::vector<std::size_t> hist1(blocks * buckets), hist2(blocks * buckets);
+    for_blocks([&](std::size_t b, std::size_t first, std::size_t last) {
+      std::size_t* h = hist1.data() + b * buckets;
+      std::size_t k = 0;
+      for(std::size_t i = first; i < last; ++i)
+        if(c[i] != refused) { ++h[(c[i] >> shift1) & mask]; ++k; }
+      kept[b] = k;
+    });
+    total = 0;
+    for(std::size_t k : kept)
+      total += k;
+    if(2 * rank >= total)
+      return take_all();
+    // the bucket of the wanted-th key (1-based), first by the leading digit, then by the next
+    auto bucket_of_rank = [&](const std::vector<std::size_t>& hist, std::size_t& before) {
+      for(std::size_t v = 0; v < buckets; ++v)
+      {
+        std::size_t in = 0;
+        for(std::size_t b = 0; b < blocks; ++b)
+          in += hist[b * buckets + v];
+        if(before + in >= rank)
+          return static_cast<std::uint64_t>(v);
+        before += in;
+      }
+      return static_cast<std::uint64_t>(buckets - 1);            // not reached: rank <= total
+    };
+    std::size_t below = 0;
+    const std::uint64_t d1 = bucket_of_rank(hist1, below);
+    for_blocks([&](std::size_t b, std::size_t first, std::size_t last) {
+      std::size_t* h = hist2.data() + b * buckets;
+      for(std::size_t i = first; i < last; ++i)
+        if(c[i] != refused && ((c[i] >> shift1) & mask) == d1)
+          ++h[(c[i] >> shift2) & mask];
+    });
+    const std::uint64_t d2 = bucket_of_rank(hist2, below);
+    limit = (d1 << digit_bits) | d2;
+    for(std::size_t b = 0; b < blocks; ++b)
     {
       std::size_t in = 0;
-      for(std::size_t b = 0; b < blocks; ++b)
-        in += hist[b * buckets + v];
-      if(before + in >= rank)
-        return static_cast<std::uint64_t>(v);
-      before += in;
+      for(std::size_t v = 0; v < d1; ++v)
+        in += hist1[b * buckets + v];
+      for(std::size_t v = 0; v <= d2; ++v)
+        in += hist2[b * buckets + v];
+      offset[b + 1] = offset[b] + in;
     }
-    return static_cast<std::uint64_t>(buckets - 1);            // not reached: rank <= total
-  };
-  const std::size_t rank = (std::max)(wanted, std::size_t(1));
-  std::size_t below = 0;
-  const std::uint64_t d1 = bucket_of_rank(hist1, rank, below);
-  for_blocks([&](std::size_t b, std::size_t first, std::size_t last) {
-    std::size_t* h = hist2.data() + b * buckets;
-    for(std::size_t i = first; i < last; ++i)
-      if(c[i] != refused && ((c[i] >> shift1) & mask) == d1)
-        ++h[(c[i] >> shift2) & mask];
-  });
-  const std::uint64_t d2 = bucket_of_rank(hist2, rank, below);
-  limit = (d1 << digit_bits) | d2;
-  std::vector<std::size_t> offset(blocks + 1, 0);
-  for(std::size_t b = 0; b < blocks; ++b)
-  {
-    std::size_t in = 0;
-    for(std::size_t v = 0; v < d1; ++v)
-      in += hist1[b * buckets + v];
-    for(std::size_t v = 0; v <= d2; ++v)
-      in += hist2[b * buckets + v];
-    offset[b + 1] = offset[b] + in;
   }
   Key_array front(offset[blocks]);
   if(low != nullptr)
     front_low->resize(front.size());
+  // local pointers: stores through the front would otherwise make the compiler reload the
+  // arrays' addresses at every key
+  const std::uint64_t* keys = c.data();
+  std::uint64_t* to = front.data();
+  const std::uint32_t* low_bits = low != nullptr ? low->data() : nullptr;
+  std::uint32_t* to_low = low != nullptr ? front_low->data() : nullptr;
+  const int shift = shift2;
+  const std::uint64_t lim = limit;
   for_blocks([&](std::size_t b, std::size_t first, std::size_t last) {
     std::size_t w = offset[b];
     for(std::size_t i = first; i < last; ++i)
-      if(c[i] != refused && key.leading_bits(c[i]) <= limit)
+    {
+      const std::uint64_t x = keys[i];
+      if(x != refused && (x >> shift) <= lim)
       {
-        if(low != nullptr)
-          (*front_low)[w] = (*low)[i];
-        front[w++] = c[i];
+        if(low_bits != nullptr)
+          to_low[w] = low_bits[i];
+        to[w++] = x;
       }
+    }
   });
   return front;
 }
