@@ -1201,18 +1201,19 @@ TEST_CASE("the candidates' radix sort orders by (cost, halfedge) like a comparis
 
 TEST_CASE("the front of the candidates holds the wanted cheapest ones when their sample misleads", "[pyramid][cost]")
 {
-  // 40,000 keys: the sampled ones (every 8th, from the 4th) are the cheapest, so the sampled
-  // limit passes too few keys for a wanted quarter; the exact selection takes over. And a
-  // sample that does not mislead (costs in a shuffled order) gives a front a little larger than
-  // wanted, with the same prefix property.
-  const std::size_t n = 40000;
+  // 40,000 keys: the sampled ones (every s-th from the (s / 2)-th) are the cheapest, so the
+  // sampled limit passes too few keys for a wanted quarter; the exact selection takes over. And
+  // a sample that does not mislead (costs in a shuffled order) gives a front a little larger
+  // than wanted, with the same prefix property.
+  const std::size_t n = 40000, s = SMR::internal::sample_stride(n);
+  REQUIRE(s >= 8);
   const SMR::internal::Candidate_key key(n);
   constexpr std::uint64_t refused = ~std::uint64_t(0);
   for(bool misleading : {true, false})
   {
     std::vector<double> cost_of(n);
     for(std::size_t i = 0; i < n; ++i)
-      cost_of[i] = i % 8 == 4 ? 1. + double((i * 7919) % n) / double(n) : 1000. + double((i * 7919) % n);
+      cost_of[i] = i % s == s / 2 ? 1. + double((i * 7919) % n) / double(n) : 1000. + double((i * 7919) % n);
     SMR::internal::Key_array c;
     for(std::size_t i = 0; i < n; ++i)
       c.push_back(key(cost_of[i], static_cast<SMR::internal::Index>(i)));

@@ -180,13 +180,17 @@ void sort_candidates(std::uint64_t* c, std::size_t n, const Candidate_key& key, 
   for(int d = 0; d < digits; ++d)
   {
     const int shift = key.halfedge_bits() + d * digit_bits;
+    // (the lambdas copy what they read into locals: through their captured references, every
+    // store into an array made the compiler load the arrays' addresses again)
     parallel_for_blocks(blocks, [&](std::size_t first, std::size_t last) {
+      const std::uint64_t* in = from;
+      const int s = shift;
       for(std::size_t b = first; b < last; ++b)
       {
         std::size_t* hist = count.data() + b * buckets;
         std::fill(hist, hist + buckets, std::size_t(0));
-        for(std::size_t i = b * block; i < (std::min)(n, (b + 1) * block); ++i)
-          ++hist[(from[i] >> shift) & mask];
+        for(std::size_t i = b * block, e = (std::min)(n, (b + 1) * block); i < e; ++i)
+          ++hist[(in[i] >> s) & mask];
       }
     }, 1);
     std::size_t sum = 0;
@@ -207,11 +211,14 @@ void sort_candidates(std::uint64_t* c, std::size_t n, const Candidate_key& key, 
     if(one_digit)
       continue;                                           // one digit for all: nothing to do
     parallel_for_blocks(blocks, [&](std::size_t first, std::size_t last) {
+      const std::uint64_t* in = from;
+      std::uint64_t* out = to;
+      const int s = shift;
       for(std::size_t b = first; b < last; ++b)
       {
         std::size_t* pos = count.data() + b * buckets;
-        for(std::size_t i = b * block; i < (std::min)(n, (b + 1) * block); ++i)
-          to[pos[(from[i] >> shift) & mask]++] = from[i];
+        for(std::size_t i = b * block, e = (std::min)(n, (b + 1) * block); i < e; ++i)
+          out[pos[(in[i] >> s) & mask]++] = in[i];
       }
     }, 1);
     std::swap(from, to);
@@ -647,25 +654,37 @@ void keep_keys(Key_array& c, Low_bits* low, const Keep& keep)
 }
 
 // A limit on the leading bits (Candidate_key::leading_bits()) of the keys of `c` under which
-// at least `wanted` of them lie, estimated from every 8th to 32nd key (fewer for more keys; a
-// fixed choice: deterministic), or ~0 where `c` is too short to sample (32,768 keys). The
-// sample rank is the wanted one plus four standard deviations of a binomial count, so that
-// the front of cheapest_keys() is a few percent larger than `wanted` (5 % on the dragon's
-// first levels, where a sorted key costs more than a sampled one) and very rarely smaller
+// at least `wanted` of them lie, estimated from a sample of the keys, or ~0 where `c` is too
+// short to sample (32,768 keys). The sample is every s-th key (sample_stride()), s a prime (17 to 127) near the
+// cube root of the number of keys: a fixed choice (deterministic), prime so that it does not
+// keep to some corners of rings of 6 (regular meshes list their rings in a repeating pattern),
+// and of the size that balances the cost of a sampled key (its read and selection, about 30 ns
+// on the dragon) against that of the front's margin (a key more to sort, about 45 ns). The
+// sample rank is the wanted one plus three standard deviations of a binomial count and 8, so
+// that the front of cheapest_keys() is a few percent larger than `wanted` and rarely smaller
 // (cheapest_keys() then selects exactly).
+inline std::size_t sample_stride(std::size_t n)
+{
+  std::size_t stride = 17;
+  for(std::size_t s : {31, 61, 127})
+    if(2 * s * s * s < n)
+      stride = s;
+  return stride;
+}
+
 inline std::uint64_t sampled_limit(const Key_array& c, const Candidate_key& key, std::uint64_t refused, std::size_t wanted)
 {
   const std::size_t n = c.size();
   if(n < (std::size_t(1) << 15))
     return ~std::uint64_t(0);
-  const std::size_t stride = n >= (std::size_t(1) << 21) ? 32 : n >= (std::size_t(1) << 20) ? 16 : 8;
+  const std::size_t stride = sample_stride(n);
   std::vector<std::uint64_t> sample;
-  sample.reserve(n / stride);
-  for(std::size_t i = stride / 2; i < n; i += stride)
+  sample.reserve(n / stride + 1);
+  for(std::size_t i = stride / 2; i < n; i += stride)   // keys stride / 2 + j stride
     if(c[i] != refused)
       sample.push_back(key.leading_bits(c[i]));
   const double expected = double(wanted) / double(stride);   // the wanted key's rank among the samples
-  const std::size_t rank = static_cast<std::size_t>(expected + 4. * std::sqrt(expected) + 8.);
+  const std::size_t rank = static_cast<std::size_t>(expected + 3. * std::sqrt(expected) + 8.);
   if(rank >= sample.size())
     return ~std::uint64_t(0);
   std::nth_element(sample.begin(), sample.begin() + std::ptrdiff_t(rank), sample.end());
@@ -796,20 +815,24 @@ inline Key_array cheapest_keys(Key_array& c, const Candidate_key& key, std::uint
   Key_array front(offset[blocks]);
   if(low != nullptr)
     front_low->resize(front.size());
-  // local pointers: stores through the front would otherwise make the compiler reload the
-  // arrays' addresses at every key
-  const std::uint64_t* keys = c.data();
-  std::uint64_t* to = front.data();
-  const std::uint32_t* low_bits = low != nullptr ? low->data() : nullptr;
-  std::uint32_t* to_low = low != nullptr ? front_low->data() : nullptr;
-  const int shift = shift2;
-  const std::uint64_t lim = limit;
+  // local pointers, copied in the lambda: through its captured references, every store into the
+  // front made the compiler load the arrays' addresses again
+  const std::uint64_t* const keys_at = c.data();
+  std::uint64_t* const front_at = front.data();
+  const std::uint32_t* const low_at = low != nullptr ? low->data() : nullptr;
+  std::uint32_t* const front_low_at = low != nullptr ? front_low->data() : nullptr;
   for_blocks([&](std::size_t b, std::size_t first, std::size_t last) {
+    const std::uint64_t* keys = keys_at;
+    std::uint64_t* to = front_at;
+    const std::uint32_t* low_bits = low_at;
+    std::uint32_t* to_low = front_low_at;
+    const int shift = shift2;
+    const std::uint64_t lim = limit, none = refused;
     std::size_t w = offset[b];
     for(std::size_t i = first; i < last; ++i)
     {
       const std::uint64_t x = keys[i];
-      if(x != refused && (x >> shift) <= lim)
+      if(x != none && (x >> shift) <= lim)
       {
         if(low_bits != nullptr)
           to_low[w] = low_bits[i];
