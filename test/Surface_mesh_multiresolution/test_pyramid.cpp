@@ -1250,6 +1250,37 @@ TEST_CASE("the front of the candidates holds the wanted cheapest ones when their
     CHECK(q == front.size());
   }
 }
+
+TEST_CASE("the front of the candidates keeps a run of equal costs whole", "[pyramid][cost]")
+{
+  // 50,000 keys of one cost (a flat region: exact ties), every third one refused: the sampled
+  // limit is that cost's, so the front is every key not refused, in its order
+  const std::size_t n = 50000;
+  const SMR::internal::Candidate_key key(n);
+  constexpr std::uint64_t refused = ~std::uint64_t(0);
+  SMR::internal::Key_array c;
+  std::size_t not_refused = 0;
+  for(std::size_t i = 0; i < n; ++i)
+  {
+    c.push_back(i % 3 == 1 ? refused : key(0.25, static_cast<SMR::internal::Index>(i)));
+    not_refused += i % 3 == 1 ? 0 : 1;
+  }
+  for(std::size_t wanted : {std::size_t(1), n / 10})
+  {
+    SMR::internal::Key_array rest = c;
+    std::size_t total = 0;
+    std::uint64_t limit = 0;
+    const SMR::internal::Key_array front = SMR::internal::cheapest_keys(rest, key, refused, wanted, total, limit);
+    CHECK(total == not_refused);
+    REQUIRE(front.size() == not_refused);
+    std::size_t q = 0;
+    for(std::uint64_t x : c)
+      if(x != refused)
+        REQUIRE(front[q++] == x);
+    SMR::internal::keys_above(rest, key, refused, limit);
+    CHECK(rest.empty());
+  }
+}
 TEST_CASE("the index-based link condition agrees with CGAL's on every edge", "[pyramid][link]")
 {
   std::vector<Mesh> meshes;
