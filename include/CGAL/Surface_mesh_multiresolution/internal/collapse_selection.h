@@ -152,95 +152,40 @@ private:
   int m_halfedge_bits = 0, m_cost_bits = 40;
 };
 
-// Sorts candidate keys (any input order) by increasing cost, equal costs in increasing
-// halfedge. Keys of equal cost bits are ordered by tie_order(x), x their low `halfedge_bits`
-// field (the halfedge, or a name of it: sort_front()): (Candidate_key::low_bits() of the cost
-// << 32) | halfedge, the order of the exact costs, then of the halfedges. Why by hand: a
-// comparison sort of the 6n candidates was the largest part of the decomposition (16 % of the dragon's), and candidates holding their costs took 16
-// bytes each. This is a stable LSD radix sort on the cost bits of the keys (passes of 10 bits,
-// a pass skipped when all candidates share its digit), then a sort by tie_order() inside each
-// run of equal cost bits, which makes the order total (that of the exact costs) whatever the
-// input order. Deterministic: the same order for any number of threads.
-template <typename TieOrder>
-void sort_candidates(std::uint64_t* c, std::size_t n, const Candidate_key& key, const TieOrder& tie_order)
+// the digits of sort_candidates(): passes of 10 bits
+constexpr int sort_digit_bits = 10;
+constexpr std::size_t sort_buckets = std::size_t(1) << sort_digit_bits;
+
+// The counts of the digits (in[i] >> shift) & (sort_buckets - 1), i in [first, last), into
+// hist (sort_buckets entries), through `four` (4 sort_buckets scratch counters): four
+// histograms counted in turn, then summed. Equal digits in a row (nearby costs; exact ties,
+// common on subdivided meshes) made each increment wait on the one before (the dragon's
+// sort: 0.111 -> 0.091 s on one thread).
+inline void count_sort_digits(const std::uint64_t* in, std::size_t first, std::size_t last, int shift,
+                              std::uint32_t* four, std::size_t* hist)
 {
-  constexpr int digit_bits = 10;
-  constexpr std::size_t buckets = std::size_t(1) << digit_bits;
+  constexpr std::size_t buckets = sort_buckets;
   constexpr std::uint64_t mask = buckets - 1;
-  const int digits = (key.cost_bits() + digit_bits - 1) / digit_bits;
-  // each pass is a stable counting sort, split into fixed blocks of candidates: a block counts
-  // its digits, then writes its candidates after those of the smaller digits and of the same
-  // digit in the blocks before it. A stable sort has one result, whatever the blocks and threads.
-  constexpr std::size_t block = std::size_t(1) << 16;
-  const std::size_t blocks = (n + block - 1) / block;
-  std::vector<std::size_t> count(blocks * buckets);
-  Key_array scratch(n);
-  std::uint64_t* from = c;
-  std::uint64_t* to = scratch.data();
-  for(int d = 0; d < digits; ++d)
+  std::fill(four, four + 4 * buckets, std::uint32_t(0));   // (a block's counts fit in 32 bits)
+  std::size_t i = first;
+  for(; i + 4 <= last; i += 4)
   {
-    const int shift = key.halfedge_bits() + d * digit_bits;
-    // (the lambdas copy what they read into locals: through their captured references, every
-    // store into an array made the compiler load the arrays' addresses again)
-    // Four histograms counted in turn, then summed: equal digits in a row (nearby costs; exact
-    // ties, common on subdivided meshes) would make each increment wait on the one before.
-    parallel_for_blocks(blocks, [&](std::size_t first, std::size_t last) {
-      const std::uint64_t* in = from;
-      const int s = shift;
-      std::vector<std::uint32_t> four(4 * buckets);   // (a block's counts fit in 32 bits)
-      std::uint32_t* h = four.data();
-      for(std::size_t b = first; b < last; ++b)
-      {
-        std::fill(four.begin(), four.end(), std::uint32_t(0));
-        std::size_t i = b * block;
-        const std::size_t e = (std::min)(n, (b + 1) * block);
-        for(; i + 4 <= e; i += 4)
-        {
-          ++h[(in[i] >> s) & mask];
-          ++h[buckets + ((in[i + 1] >> s) & mask)];
-          ++h[2 * buckets + ((in[i + 2] >> s) & mask)];
-          ++h[3 * buckets + ((in[i + 3] >> s) & mask)];
-        }
-        for(; i < e; ++i)
-          ++h[(in[i] >> s) & mask];
-        std::size_t* hist = count.data() + b * buckets;
-        for(std::size_t v = 0; v < buckets; ++v)
-          hist[v] = std::size_t(h[v]) + h[buckets + v] + h[2 * buckets + v] + h[3 * buckets + v];
-      }
-    }, 1);
-    std::size_t sum = 0;
-    bool one_digit = false;
-    for(std::size_t v = 0; v < buckets && !one_digit; ++v)
-    {
-      std::size_t total = 0;
-      for(std::size_t b = 0; b < blocks; ++b)
-        total += count[b * buckets + v];
-      one_digit = (total == n);
-      for(std::size_t b = 0; b < blocks; ++b)
-      {
-        const std::size_t t = count[b * buckets + v];
-        count[b * buckets + v] = sum;
-        sum += t;
-      }
-    }
-    if(one_digit)
-      continue;                                           // one digit for all: nothing to do
-    parallel_for_blocks(blocks, [&](std::size_t first, std::size_t last) {
-      const std::uint64_t* in = from;
-      std::uint64_t* out = to;
-      const int s = shift;
-      for(std::size_t b = first; b < last; ++b)
-      {
-        std::size_t* pos = count.data() + b * buckets;
-        for(std::size_t i = b * block, e = (std::min)(n, (b + 1) * block); i < e; ++i)
-          out[pos[(in[i] >> s) & mask]++] = in[i];
-      }
-    }, 1);
-    std::swap(from, to);
+    ++four[(in[i] >> shift) & mask];
+    ++four[buckets + ((in[i + 1] >> shift) & mask)];
+    ++four[2 * buckets + ((in[i + 2] >> shift) & mask)];
+    ++four[3 * buckets + ((in[i + 3] >> shift) & mask)];
   }
-  if(from != c)
-    std::copy(from, from + n, c);
-  scratch = Key_array();
+  for(; i < last; ++i)
+    ++four[(in[i] >> shift) & mask];
+  for(std::size_t v = 0; v < buckets; ++v)
+    hist[v] = std::size_t(four[v]) + four[buckets + v] + four[2 * buckets + v] + four[3 * buckets + v];
+}
+
+// The last step of sort_candidates(): the runs of keys of equal cost bits of c[0..n), sorted by
+// those bits, put in the order of tie_order() (see there).
+template <typename TieOrder>
+void order_runs_of_equal_cost_bits(std::uint64_t* c, std::size_t n, const Candidate_key& key, const TieOrder& tie_order)
+{
   // Runs of equal cost bits are ordered by their exact costs, then halfedges (tie_order()).
   // They are not rare everywhere: the symmetric stencils of a subdivided mesh make exact ties
   // common (11 of the 19 million keys sorted while decomposing a Loop-subdivided horse of 3.1M
@@ -292,6 +237,78 @@ void sort_candidates(std::uint64_t* c, std::size_t n, const Candidate_key& key, 
       }
     }
   }, 1);
+}
+
+// Sorts candidate keys (any input order) by increasing cost, equal costs in increasing
+// halfedge. Keys of equal cost bits are ordered by tie_order(x), x their low `halfedge_bits`
+// field (the halfedge, or a name of it: sort_front()): (Candidate_key::low_bits() of the cost
+// << 32) | halfedge, the order of the exact costs, then of the halfedges. Why by hand: a
+// comparison sort of the 6n candidates was the largest part of the decomposition (16 % of the dragon's), and candidates holding their costs took 16
+// bytes each. This is a stable LSD radix sort on the cost bits of the keys (passes of 10 bits,
+// a pass skipped when all candidates share its digit), then a sort by tie_order() inside each
+// run of equal cost bits, which makes the order total (that of the exact costs) whatever the
+// input order. Deterministic: the same order for any number of threads.
+template <typename TieOrder>
+void sort_candidates(std::uint64_t* c, std::size_t n, const Candidate_key& key, const TieOrder& tie_order)
+{
+  constexpr int digit_bits = sort_digit_bits;
+  constexpr std::size_t buckets = sort_buckets;
+  constexpr std::uint64_t mask = buckets - 1;
+  const int digits = (key.cost_bits() + digit_bits - 1) / digit_bits;
+  // each pass is a stable counting sort, split into fixed blocks of candidates: a block counts
+  // its digits, then writes its candidates after those of the smaller digits and of the same
+  // digit in the blocks before it. A stable sort has one result, whatever the blocks and threads.
+  constexpr std::size_t block = std::size_t(1) << 16;
+  const std::size_t blocks = (n + block - 1) / block;
+  std::vector<std::size_t> count(blocks * buckets);
+  Key_array scratch(n);
+  std::uint64_t* from = c;
+  std::uint64_t* to = scratch.data();
+  for(int d = 0; d < digits; ++d)
+  {
+    const int shift = key.halfedge_bits() + d * digit_bits;
+    // (the lambdas copy what they read into locals: through their captured references, every
+    // store into an array made the compiler load the arrays' addresses again)
+    parallel_for_blocks(blocks, [&](std::size_t first, std::size_t last) {
+      std::vector<std::uint32_t> four(4 * sort_buckets);
+      for(std::size_t b = first; b < last; ++b)
+        count_sort_digits(from, b * block, (std::min)(n, (b + 1) * block), shift, four.data(),
+                          count.data() + b * sort_buckets);
+    }, 1);
+    std::size_t sum = 0;
+    bool one_digit = false;
+    for(std::size_t v = 0; v < buckets && !one_digit; ++v)
+    {
+      std::size_t total = 0;
+      for(std::size_t b = 0; b < blocks; ++b)
+        total += count[b * buckets + v];
+      one_digit = (total == n);
+      for(std::size_t b = 0; b < blocks; ++b)
+      {
+        const std::size_t t = count[b * buckets + v];
+        count[b * buckets + v] = sum;
+        sum += t;
+      }
+    }
+    if(one_digit)
+      continue;                                           // one digit for all: nothing to do
+    parallel_for_blocks(blocks, [&](std::size_t first, std::size_t last) {
+      const std::uint64_t* in = from;
+      std::uint64_t* out = to;
+      const int s = shift;
+      for(std::size_t b = first; b < last; ++b)
+      {
+        std::size_t* pos = count.data() + b * buckets;
+        for(std::size_t i = b * block, e = (std::min)(n, (b + 1) * block); i < e; ++i)
+          out[pos[(in[i] >> s) & mask]++] = in[i];
+      }
+    }, 1);
+    std::swap(from, to);
+  }
+  if(from != c)
+    std::copy(from, from + n, c);
+  scratch = Key_array();
+  order_runs_of_equal_cost_bits(c, n, key, tie_order);
 }
 
 // The rule of the greedy independent set (Section 3.1: "selecting one odd vertex and locking
@@ -706,6 +723,79 @@ inline std::uint64_t sampled_limit(const Key_array& c, const Candidate_key& key,
   return sample[rank];
 }
 
+// The keys of `c` in fixed blocks (cheapest_keys()): f(b, first, last) for every block b, in
+// parallel
+constexpr std::size_t front_block = std::size_t(1) << 18;
+
+template <typename F>
+void for_key_blocks(std::size_t n, const F& f)
+{
+  parallel_for_blocks((n + front_block - 1) / front_block, [&](std::size_t first, std::size_t last) {
+    for(std::size_t b = first; b < last; ++b)
+      f(b, b * front_block, (std::min)(n, (b + 1) * front_block));
+  }, 1);
+}
+
+// The radix select of cheapest_keys(): the leading bits of the rank-th cheapest key of `c`
+// (1-based), found by a histogram of the first 12 of them in fixed blocks, then one of the next
+// 12 inside the bucket holding that key. kept[b]: the keys of block b not refused, `total`
+// their sum; offset[b + 1] - offset[b]: the keys of block b at or under the limit (set only
+// when 2 rank < total, else ~0 is returned: every key is wanted).
+inline std::uint64_t select_front_limit(const Key_array& c, const Candidate_key& key, std::uint64_t refused, std::size_t rank,
+                                        std::vector<std::size_t>& kept, std::vector<std::size_t>& offset, std::size_t& total)
+{
+  constexpr int digit_bits = 12;
+  constexpr std::size_t buckets = std::size_t(1) << digit_bits;
+  const std::size_t blocks = kept.size();
+  const int shift2 = key.leading_bits_shift(), shift1 = shift2 + digit_bits;   // the two digits of the leading bits
+  const std::uint64_t mask = buckets - 1;
+  std::vector<std::size_t> hist1(blocks * buckets), hist2(blocks * buckets);
+  for_key_blocks(c.size(), [&](std::size_t b, std::size_t first, std::size_t last) {
+    std::size_t* h = hist1.data() + b * buckets;
+    std::size_t k = 0;
+    for(std::size_t i = first; i < last; ++i)
+      if(c[i] != refused) { ++h[(c[i] >> shift1) & mask]; ++k; }
+    kept[b] = k;
+  });
+  total = 0;
+  for(std::size_t k : kept)
+    total += k;
+  if(2 * rank >= total)
+    return ~std::uint64_t(0);
+  // the bucket of the wanted-th key (1-based), first by the leading digit, then by the next
+  auto bucket_of_rank = [&](const std::vector<std::size_t>& hist, std::size_t& before) {
+    for(std::size_t v = 0; v < buckets; ++v)
+    {
+      std::size_t in = 0;
+      for(std::size_t b = 0; b < blocks; ++b)
+        in += hist[b * buckets + v];
+      if(before + in >= rank)
+        return static_cast<std::uint64_t>(v);
+      before += in;
+    }
+    return static_cast<std::uint64_t>(buckets - 1);            // not reached: rank <= total
+  };
+  std::size_t below = 0;
+  const std::uint64_t d1 = bucket_of_rank(hist1, below);
+  for_key_blocks(c.size(), [&](std::size_t b, std::size_t first, std::size_t last) {
+    std::size_t* h = hist2.data() + b * buckets;
+    for(std::size_t i = first; i < last; ++i)
+      if(c[i] != refused && ((c[i] >> shift1) & mask) == d1)
+        ++h[(c[i] >> shift2) & mask];
+  });
+  const std::uint64_t d2 = bucket_of_rank(hist2, below);
+  for(std::size_t b = 0; b < blocks; ++b)
+  {
+    std::size_t in = 0;
+    for(std::size_t v = 0; v < d1; ++v)
+      in += hist1[b * buckets + v];
+    for(std::size_t v = 0; v <= d2; ++v)
+      in += hist2[b * buckets + v];
+    offset[b + 1] = offset[b] + in;
+  }
+  return (d1 << digit_bits) | d2;
+}
+
 // The cheapest candidate keys of `c`, in their order in `c`, without the `refused` ones: the
 // keys whose leading 24 bits (Candidate_key::leading_bits()) are at most `limit`, at least
 // the `wanted` cheapest (all keys, limit = ~0, when wanted is at least half of them; `c` is
@@ -714,7 +804,7 @@ inline std::uint64_t sampled_limit(const Key_array& c, const Candidate_key& key,
 // (keys_above() extracts them). The limit is sampled (sampled_limit()), then checked by a
 // count of the keys under it, which also numbers each block's part of the front; where the
 // sample fell short (or `c` is short), it is that of the wanted-th cheapest key, found by a
-// radix select (two histograms of 12-bit digits in fixed blocks). Then the front is scattered
+// radix select (select_front_limit()). Then the front is scattered
 // in block order: parallel and deterministic. Why by hand: std::nth_element over the 6 n
 // candidates was sequential (10 % of the dragon's decomposition on two threads). Why sampled:
 // the histograms' increments of nearby keys (similar costs: the same bucket) waited on each
@@ -727,44 +817,25 @@ inline Key_array cheapest_keys(Key_array& c, const Candidate_key& key, std::uint
                                Low_bits* low = nullptr, Low_bits* front_low = nullptr)
 {
   const std::size_t n = c.size();
-  constexpr int digit_bits = 12;
-  constexpr std::size_t buckets = std::size_t(1) << digit_bits;
-  constexpr std::size_t block = std::size_t(1) << 18;
-  const std::size_t blocks = (n + block - 1) / block;
-  const int shift2 = key.leading_bits_shift(), shift1 = shift2 + digit_bits;   // the two digits of the leading bits
-  const std::uint64_t mask = buckets - 1;
+  const std::size_t blocks = (n + front_block - 1) / front_block;
+  const int shift = key.leading_bits_shift();
   const std::size_t rank = (std::max)(wanted, std::size_t(1));
   std::vector<std::size_t> kept(blocks), offset(blocks + 1, 0);
-  auto for_blocks = [&](const auto& f) {
-    parallel_for_blocks(blocks, [&](std::size_t first, std::size_t last) {
-      for(std::size_t b = first; b < last; ++b)
-        f(b, b * block, (std::min)(n, (b + 1) * block));
-    }, 1);
-  };
-  auto take_all = [&] {
-    limit = ~std::uint64_t(0);
-    keep_keys(c, low, [&](std::uint64_t x) { return x != refused; });   // the order kept
-    Key_array all;
-    all.swap(c);
-    if(low != nullptr)
-      front_low->swap(*low);
-    return all;
-  };
   limit = sampled_limit(c, key, refused, wanted);
   bool counted = false;
   if(limit != ~std::uint64_t(0))
   {
-    const std::uint64_t* keys = c.data();
-    const int shift = shift2;
-    const std::uint64_t lim = limit;
+    // the keys not refused and those under the sampled limit, per block
     std::vector<std::size_t> under(blocks);
-    for_blocks([&](std::size_t b, std::size_t first, std::size_t last) {
+    for_key_blocks(n, [&](std::size_t b, std::size_t first, std::size_t last) {
+      const std::uint64_t* keys = c.data();
+      const std::uint64_t lim = limit, none = refused;
       std::size_t k = 0, u = 0;
       for(std::size_t i = first; i < last; ++i)
       {
         const std::uint64_t x = keys[i];
-        k += x != refused;
-        u += (x != refused) & ((x >> shift) <= lim);
+        k += x != none;
+        u += (x != none) & ((x >> shift) <= lim);
       }
       kept[b] = k;
       under[b] = u;
@@ -775,57 +846,19 @@ inline Key_array cheapest_keys(Key_array& c, const Candidate_key& key, std::uint
       total += kept[b];
       offset[b + 1] = offset[b] + under[b];
     }
-    if(2 * rank >= total)
-      return take_all();
-    counted = offset[blocks] >= rank;
+    counted = 2 * rank < total && offset[blocks] >= rank;
   }
-  if(!counted)
+  if(!counted && (limit == ~std::uint64_t(0) || 2 * rank < total))   // (else all keys are wanted)
+    limit = select_front_limit(c, key, refused, rank, kept, offset, total);
+  if(2 * rank >= total)
   {
-    std::vector<std::size_t> hist1(blocks * buckets), hist2(blocks * buckets);
-    for_blocks([&](std::size_t b, std::size_t first, std::size_t last) {
-      std::size_t* h = hist1.data() + b * buckets;
-      std::size_t k = 0;
-      for(std::size_t i = first; i < last; ++i)
-        if(c[i] != refused) { ++h[(c[i] >> shift1) & mask]; ++k; }
-      kept[b] = k;
-    });
-    total = 0;
-    for(std::size_t k : kept)
-      total += k;
-    if(2 * rank >= total)
-      return take_all();
-    // the bucket of the wanted-th key (1-based), first by the leading digit, then by the next
-    auto bucket_of_rank = [&](const std::vector<std::size_t>& hist, std::size_t& before) {
-      for(std::size_t v = 0; v < buckets; ++v)
-      {
-        std::size_t in = 0;
-        for(std::size_t b = 0; b < blocks; ++b)
-          in += hist[b * buckets + v];
-        if(before + in >= rank)
-          return static_cast<std::uint64_t>(v);
-        before += in;
-      }
-      return static_cast<std::uint64_t>(buckets - 1);            // not reached: rank <= total
-    };
-    std::size_t below = 0;
-    const std::uint64_t d1 = bucket_of_rank(hist1, below);
-    for_blocks([&](std::size_t b, std::size_t first, std::size_t last) {
-      std::size_t* h = hist2.data() + b * buckets;
-      for(std::size_t i = first; i < last; ++i)
-        if(c[i] != refused && ((c[i] >> shift1) & mask) == d1)
-          ++h[(c[i] >> shift2) & mask];
-    });
-    const std::uint64_t d2 = bucket_of_rank(hist2, below);
-    limit = (d1 << digit_bits) | d2;
-    for(std::size_t b = 0; b < blocks; ++b)
-    {
-      std::size_t in = 0;
-      for(std::size_t v = 0; v < d1; ++v)
-        in += hist1[b * buckets + v];
-      for(std::size_t v = 0; v <= d2; ++v)
-        in += hist2[b * buckets + v];
-      offset[b + 1] = offset[b] + in;
-    }
+    limit = ~std::uint64_t(0);
+    keep_keys(c, low, [&](std::uint64_t x) { return x != refused; });   // the order kept
+    Key_array all;
+    all.swap(c);
+    if(low != nullptr)
+      front_low->swap(*low);
+    return all;
   }
   Key_array front(offset[blocks]);
   if(low != nullptr)
@@ -836,18 +869,18 @@ inline Key_array cheapest_keys(Key_array& c, const Candidate_key& key, std::uint
   std::uint64_t* const front_at = front.data();
   const std::uint32_t* const low_at = low != nullptr ? low->data() : nullptr;
   std::uint32_t* const front_low_at = low != nullptr ? front_low->data() : nullptr;
-  for_blocks([&](std::size_t b, std::size_t first, std::size_t last) {
+  for_key_blocks(n, [&](std::size_t b, std::size_t first, std::size_t last) {
     const std::uint64_t* keys = keys_at;
     std::uint64_t* to = front_at;
     const std::uint32_t* low_bits = low_at;
     std::uint32_t* to_low = front_low_at;
-    const int shift = shift2;
+    const int s = shift;
     const std::uint64_t lim = limit, none = refused;
     std::size_t w = offset[b];
     for(std::size_t i = first; i < last; ++i)
     {
       const std::uint64_t x = keys[i];
-      if(x != none && (x >> shift) <= lim)
+      if(x != none && (x >> s) <= lim)
       {
         if(low_bits != nullptr)
           to_low[w] = low_bits[i];
