@@ -166,7 +166,8 @@ inline void count_sort_digits(const std::uint64_t* in, std::size_t first, std::s
 {
   constexpr std::size_t buckets = sort_buckets;
   constexpr std::uint64_t mask = buckets - 1;
-  std::fill(four, four + 4 * buckets, std::uint32_t(0));   // (a block's counts fit in 32 bits)
+  CGAL_precondition(last - first <= std::size_t(std::numeric_limits<std::uint32_t>::max()));   // 32-bit counters
+  std::fill(four, four + 4 * buckets, std::uint32_t(0));
   std::size_t i = first;
   for(; i + 4 <= last; i += 4)
   {
@@ -267,8 +268,6 @@ void sort_candidates(std::uint64_t* c, std::size_t n, const Candidate_key& key, 
   for(int d = 0; d < digits; ++d)
   {
     const int shift = key.halfedge_bits() + d * digit_bits;
-    // (the lambdas copy what they read into locals: through their captured references, every
-    // store into an array made the compiler load the arrays' addresses again)
     parallel_for_blocks(blocks, [&](std::size_t first, std::size_t last) {
       std::vector<std::uint32_t> four(4 * sort_buckets);
       for(std::size_t b = first; b < last; ++b)
@@ -292,6 +291,8 @@ void sort_candidates(std::uint64_t* c, std::size_t n, const Candidate_key& key, 
     }
     if(one_digit)
       continue;                                           // one digit for all: nothing to do
+    // (the lambda copies what it reads into locals: through its captured references, every
+    // store made the compiler load the loop bound and the arrays' addresses again)
     parallel_for_blocks(blocks, [&](std::size_t first, std::size_t last) {
       const std::uint64_t* in = from;
       std::uint64_t* out = to;
@@ -687,11 +688,12 @@ void keep_keys(Key_array& c, Low_bits* low, const Keep& keep)
 
 // A limit on the leading bits (Candidate_key::leading_bits()) of the keys of `c` under which
 // at least `wanted` of them lie, estimated from a sample of the keys, or ~0 where `c` is too
-// short to sample (32,768 keys). The sample is every s-th key (sample_stride()), s a prime (17 to 127) near the
-// cube root of the number of keys: a fixed choice (deterministic), prime so that it does not
-// keep to some corners of rings of 6 (regular meshes list their rings in a repeating pattern),
-// and of the size that balances the cost of a sampled key (its read and selection, about 30 ns
-// on the dragon) against that of the front's margin (a key more to sort, about 45 ns). The
+// short to sample (32,768 keys). The sample is every s-th key (sample_stride()), s a prime
+// (17 to 127) near the cube root of the number of keys: a fixed choice (deterministic), prime
+// so that it does not keep to some corners of rings of 6 (regular meshes list their rings in a
+// repeating pattern), and of the size that balances the cost of a sampled key (its read and
+// selection, about 30 ns on the dragon) against that of the front's margin (a key more to
+// sort, about 45 ns). The
 // sample rank is the wanted one plus three standard deviations of a binomial count and 8, so
 // that the front of cheapest_keys() is a few percent larger than `wanted` and rarely smaller
 // (cheapest_keys() then selects exactly).
