@@ -1705,6 +1705,96 @@ TEST_CASE("the face arrays expanded in parallel blocks are those of the sequenti
 #endif
 }
 
+// The in-place moves that shrink a level's arrays, in parallel waves (move_down_in_waves()),
+// against the copy into a new array: kept items at random with several rates (none removed,
+// a long kept prefix, a few removed, half, all but a few), as blocks of any size see them (the
+// faces' move: blocks of positions, their kept items numbered by a prefix sum) and as a level's
+// rows see them (keep_values_of_next_level(), dimensions 1 and 3, against values_of_next_level()),
+// on 1, 2, 3 and 8 threads.
+TEST_CASE("moves towards the start in parallel waves give the sequential move's arrays", "[pyramid][faces]")
+{
+  typedef SMR::internal::Index Index;
+  std::mt19937 rng(15);
+  auto kept_positions = [&](std::size_t n, double removed_rate, std::size_t kept_prefix) {
+    std::bernoulli_distribution removed(removed_rate);
+    std::vector<Index> kept;
+    for(std::size_t p = 0; p < n; ++p)
+      if(p < kept_prefix || !removed(rng))
+        kept.push_back(Index(p));
+    return kept;
+  };
+  // blocks of `block` positions of an array of n items, the kept ones moved down in order
+  auto moved_in_blocks = [](const std::vector<Index>& kept, std::size_t n, std::size_t block) {
+    std::vector<Index> a(n);
+    std::iota(a.begin(), a.end(), Index(1000));
+    std::vector<unsigned char> is_kept(n, 0);
+    for(Index p : kept)
+      is_kept[p] = 1;
+    const std::size_t blocks = (n + block - 1) / block;
+    std::vector<std::size_t> kept_before(blocks + 1, 0);
+    for(std::size_t b = 0; b < blocks; ++b)
+    {
+      kept_before[b + 1] = kept_before[b];
+      for(std::size_t p = b * block; p < (std::min)(n, (b + 1) * block); ++p)
+        kept_before[b + 1] += is_kept[p];
+    }
+    SMR::internal::move_down_in_waves(blocks, [&](std::size_t b) { return b * block; },
+                                      [&](std::size_t b) { return kept_before[b + 1]; },
+                                      [&](std::size_t b) {
+                                        std::size_t to = kept_before[b];
+                                        for(std::size_t p = b * block; p < (std::min)(n, (b + 1) * block); ++p)
+                                          if(is_kept[p])
+                                            a[to++] = a[p];
+                                      });
+    a.resize(kept_before[blocks]);
+    return a;
+  };
+  struct Case { std::size_t n; double rate; std::size_t prefix; };
+  const std::vector<Case> cases = {{1, 0., 0}, {50000, 0., 0}, {50000, 0.2, 20000}, {50000, 0.01, 0},
+                                   {200000, 0.18, 0}, {60000, 0.5, 0}, {60000, 0.99, 0}, {5000, 0.2, 0}};
+  for(const Case& cs : cases)
+  {
+    const std::vector<Index> kept = kept_positions(cs.n, cs.rate, cs.prefix);
+    std::vector<Index> expected;
+    for(Index p : kept)
+      expected.push_back(Index(1000) + p);
+    SMR::internal::Pyramid_level lev;
+    lev.even_rows = kept;
+    std::vector<std::vector<double> > values(2), expected_values(2);
+    for(std::size_t d : {std::size_t(1), std::size_t(3)})
+    {
+      std::vector<double>& v = values[d / 3];
+      v.resize(cs.n * d);
+      for(std::size_t i = 0; i < v.size(); ++i)
+        v[i] = double(i) + 0.5;
+      SMR::internal::values_of_next_level(lev, d, v, expected_values[d / 3]);
+    }
+    auto all_moves = [&] {
+      bool same = true;
+      for(std::size_t block : {std::size_t(1), std::size_t(7), std::size_t(4096)})
+        same = same && moved_in_blocks(kept, cs.n, block) == expected;
+      for(std::size_t d : {std::size_t(1), std::size_t(3)})
+      {
+        std::vector<double> v = values[d / 3];
+        SMR::internal::keep_values_of_next_level(lev, d, v);
+        same = same && v == expected_values[d / 3];
+      }
+      return same;
+    };
+    INFO("items " << cs.n << ", removed " << cs.rate << ", kept prefix " << cs.prefix);
+    CHECK(all_moves());
+#ifdef CGAL_LINKED_WITH_TBB
+    for(int threads : {1, 2, 3, 8})
+    {
+      tbb::task_arena arena(threads);
+      bool same = false;
+      arena.execute([&] { same = all_moves(); });
+      CHECK(same);
+    }
+#endif
+  }
+}
+
 namespace {
 // a sphere of 2,562 vertices and a grid of 1,681 with a border, their vertices moved by a
 // seeded noise (non-trivial costs, no exact ties)

@@ -375,8 +375,14 @@ void Decomposition<TriangleMesh, CostModel, Visitor>::take_out_removed_faces(Pyr
   level.removed_face_positions.resize(nr);
   level.removed_faces.resize(3 * nr);
   m_collapsed.face_after.resize(number_of_faces);
+  constexpr std::size_t move_block = 4096;
+  const std::size_t move_blocks = (number_of_faces + move_block - 1) / move_block;
+  std::vector<std::size_t> kept_before(move_blocks + 1);   // per block of faces: the kept faces before it
+  kept_before[move_blocks] = number_of_faces - nr;
   removed_faces.visit([&](std::size_t p, std::size_t rank, bool is_removed) {
     const Index* t = m_faces.data() + 3 * p;
+    if(p % move_block == 0)
+      kept_before[p / move_block] = p - rank;
     if(is_removed)
     {
       level.removed_face_positions[rank] = static_cast<Index>(p);
@@ -386,20 +392,25 @@ void Decomposition<TriangleMesh, CostModel, Visitor>::take_out_removed_faces(Pyr
     else
       m_collapsed.face_after[p] = static_cast<Index>(p - rank);
   });
-  // the kept faces moved down in place, in order (face p to p - rank <= p: read before it is
-  // written over), the array's capacity kept: a new array per level (zero-filled first) was
-  // mapped and touched anew on large meshes. Sequential: a block moves faces into the block
-  // before it, which may not have read them yet.
+  // the kept faces moved down in place, in order (face p to p - rank <= p), the array's
+  // capacity kept: a new array per level (zero-filled first) was mapped and touched anew on
+  // large meshes. A block of faces writes below the faces it reads, into blocks before it,
+  // which may not have read theirs yet: in parallel waves (move_down_in_waves()).
   Index* faces = m_faces.data();
-  std::size_t to = 0;
-  for(std::size_t p = 0; p < number_of_faces; ++p)
-    if(m_face_removed[p] == 0)
-    {
-      if(to != p)
-        copy_values(faces + 3 * p, 3, faces + 3 * to);
-      ++to;
-    }
-  m_faces.resize(3 * to);
+  move_down_in_waves(move_blocks,
+                     [&](std::size_t b) { return b * move_block; },
+                     [&](std::size_t b) { return kept_before[b + 1]; },
+                     [&](std::size_t b) {
+                       std::size_t to = kept_before[b];
+                       for(std::size_t p = b * move_block, e = (std::min)(number_of_faces, (b + 1) * move_block); p < e; ++p)
+                         if(m_face_removed[p] == 0)
+                         {
+                           if(to != p)
+                             copy_values(faces + 3 * p, 3, faces + 3 * to);
+                           ++to;
+                         }
+                     });
+  m_faces.resize(3 * (number_of_faces - nr));
 }
 
 // The values of every channel of the input, validated (channel 0: the coordinates)

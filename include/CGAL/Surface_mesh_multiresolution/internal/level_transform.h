@@ -75,11 +75,21 @@ inline void spread_to_level(const Pyramid_level& lev, std::size_t dim, const dou
 template <typename T>
 void keep_values_of_next_level(const Pyramid_level& lev, std::size_t dim, std::vector<T>& f)
 {
+  // in blocks of rows of M_{k+1}, in parallel waves (move_down_in_waves()): block b writes rows
+  // [b B, (b + 1) B) and reads from row even_rows[b B] on
+  constexpr std::size_t block = 4096;
   T* data = f.data();
-  for(std::size_t j = 0; j < lev.even_rows.size(); ++j)
-    if(std::size_t(lev.even_rows[j]) != j)
-      copy_values(data + std::size_t(lev.even_rows[j]) * dim, dim, data + j * dim);
-  f.resize(lev.even_rows.size() * dim);
+  const Index* even = lev.even_rows.data();
+  const std::size_t n = lev.even_rows.size();
+  move_down_in_waves((n + block - 1) / block,
+                     [&](std::size_t b) { return std::size_t(even[b * block]); },
+                     [&](std::size_t b) { return (std::min)(n, (b + 1) * block); },
+                     [&](std::size_t b) {
+                       for(std::size_t j = b * block, e = (std::min)(n, (b + 1) * block); j < e; ++j)
+                         if(std::size_t(even[j]) != j)
+                           copy_values(data + std::size_t(even[j]) * dim, dim, data + j * dim);
+                     });
+  f.resize(n * dim);
 }
 
 // the values of M_{k+1} (rows) from those of M_k: even vertices keep their values

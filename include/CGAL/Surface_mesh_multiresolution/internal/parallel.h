@@ -135,6 +135,40 @@ private:
   std::vector<std::size_t> m_first;
 };
 
+// A stable move of items towards the start of their own array (each item to a position at or
+// before its own, in order: an ordered compaction in place), by blocks of items, in parallel
+// where that is safe. move_block(b) moves block b's items in order; read_begin(b) is the
+// lowest position block b reads, write_end(b) one past the highest it writes (both increasing
+// in b). Blocks run in waves [a, c): a wave holds every block whose writes all lie below the
+// lowest read of its first block, so no block overwrites an item that one of the same wave
+// has not read yet; the blocks before a wave are done, and an item's new position lies before
+// every later block's reads. The result is the sequential loop's for any number of threads.
+// Why: the in-place moves that shrink a level's arrays were sequential; on two threads they
+// took longer than on one (the items last written by the other core). A compaction that
+// removes a fraction r of the items gives waves growing as r times their start, so on a
+// large array only its first few blocks move one at a time.
+template <typename ReadBegin, typename WriteEnd, typename MoveBlock>
+void move_down_in_waves(std::size_t number_of_blocks, const ReadBegin& read_begin, const WriteEnd& write_end,
+                        const MoveBlock& move_block)
+{
+  std::size_t a = 0;
+  while(a < number_of_blocks)
+  {
+    const std::size_t lowest_read = read_begin(a);
+    std::size_t c = a + 1;
+    while(c < number_of_blocks && write_end(c) <= lowest_read)
+      ++c;
+    if(c == a + 1)
+      move_block(a);
+    else
+      parallel_for_blocks(c - a, [&](std::size_t first, std::size_t last) {
+        for(std::size_t b = first; b < last; ++b)
+          move_block(a + b);
+      }, 1);
+    a = c;
+  }
+}
+
 // The number of threads the parallel loops may use here (1 without TBB).
 inline int available_threads()
 {
