@@ -13,6 +13,7 @@
 
 #include <CGAL/Surface_mesh_multiresolution/parameters.h>
 #include <CGAL/Surface_mesh_multiresolution/Attribute_traits.h>
+#include <CGAL/Surface_mesh_multiresolution/Memory_order.h>
 #include <CGAL/Surface_mesh_multiresolution/Relaxation_scheme.h>
 #include <CGAL/Surface_mesh_multiresolution/Relaxation_row_rule.h>
 #include <CGAL/Surface_mesh_multiresolution/Relaxation_operator.h>

@@ -29,7 +29,7 @@ namespace internal {
 // M_k. The invariants (checked by check_pyramid(), Pyramid_checks.h) are stated there.
 struct Pyramid_level
 {
-  std::vector<Index> vertices;                 // input number of every row (increasing); derived, not saved
+  std::vector<Index> vertices;                 // input number of every row (increasing in the input order; see Memory_order); derived, not saved
   // lambda^k over the rows of M_k: stored only in pyramids read from files of format 1 or 2;
   // otherwise empty, and computed from the pyramid's weight_positions() (level_weights.h)
   Sparse_weights weights;
@@ -153,7 +153,8 @@ public:
   /// the relaxation scheme of the weights
   Relaxation_scheme relaxation_scheme() const { return m_scheme; }
 
-  /// the global numbers (ranks in the input) of the vertices of \f$ M_k \f$, increasing
+  /// the global numbers (ranks in the input) of the vertices of \f$ M_k \f$, in the order of the pyramid's rows:
+  /// increasing, but for a pyramid decomposed in its own order (`Memory_order`)
   const std::vector<std::uint32_t>& vertices(std::size_t k) const
   {
     check_mesh_level(k);
@@ -264,11 +265,12 @@ private:
   std::size_t m_number_of_input_vertices = 0;
   std::vector<std::size_t> m_dimensions{3};
   std::vector<internal::Pyramid_level> m_levels;
-  std::vector<Index> m_coarse_vertices;                 // input numbers of the rows of M_K, increasing (derived, not saved)
+  std::vector<Index> m_coarse_vertices;                 // input numbers of the rows of M_K (derived, not saved)
   std::vector<Index> m_coarse_faces;                    // 3 rows of M_K per face
   std::vector<std::vector<double> > m_coarse_values;    // per channel, rows of M_K
   std::vector<double> m_weight_positions;               // 3 per input vertex (level_weights.h)
   std::vector<internal::Analysis_state> m_analysed;     // per channel (analysis_states())
+  std::vector<Index> m_face_order;                      // per face of M_0: its input position (Memory_order); empty: the input's order
 };
 
 /// \cond SKIP_IN_MANUAL
@@ -285,6 +287,8 @@ struct Pyramid_access
   template <typename TM> static void set_number_of_input_vertices(Pyramid<TM>& p, std::size_t n) { p.m_number_of_input_vertices = n; }
   template <typename TM> static void set_relaxation_scheme(Pyramid<TM>& p, Relaxation_scheme s) { p.m_scheme = s; }
   template <typename TM> static std::vector<Analysis_state>& analysis_states(Pyramid<TM>& p) { return p.m_analysed; }
+  template <typename TM> static std::vector<Index>& face_order(Pyramid<TM>& p) { return p.m_face_order; }
+  template <typename TM> static const std::vector<Index>& face_order(const Pyramid<TM>& p) { return p.m_face_order; }
   // the state of channel c (every channel UNKNOWN first if no state is held)
   template <typename TM> static void set_analysis_state(Pyramid<TM>& p, std::size_t c, Analysis_state a)
   {

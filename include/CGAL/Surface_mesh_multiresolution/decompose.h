@@ -17,7 +17,9 @@
 #include <CGAL/Surface_mesh_multiresolution/internal/level_transform.h>
 #include <CGAL/Surface_mesh_multiresolution/internal/parallel.h>
 #include <CGAL/Surface_mesh_multiresolution/internal/relaxation_weights.h>
+#include <CGAL/Surface_mesh_multiresolution/internal/spatial_order.h>
 #include <CGAL/Surface_mesh_multiresolution/Decomposition_visitor_base.h>
+#include <CGAL/Surface_mesh_multiresolution/Memory_order.h>
 #include <CGAL/Surface_mesh_multiresolution/parameters.h>
 #include <CGAL/Surface_mesh_multiresolution/Pyramid.h>
 
@@ -66,14 +68,20 @@ template <typename TriangleMesh, typename CostModel, typename Visitor>
 class Decomposition
 {
 public:
+  // values and faces in the vertex order `vertex_order` (the input number of every row of M_0;
+  // empty: the input's numbering)
   Decomposition(Pyramid<TriangleMesh>& pyr, std::vector<std::vector<double> >&& values, std::vector<Index>&& faces,
-                CostModel& cost_model, Relaxation_scheme scheme, Visitor& visitor)
+                std::vector<Index>&& vertex_order, CostModel& cost_model, Relaxation_scheme scheme, Visitor& visitor)
     : m_pyr(pyr), m_values(std::move(values)), m_faces(std::move(faces)), m_cost(cost_model), m_scheme(scheme),
       m_visitor(visitor)
   {
     const std::size_t n0 = m_values[0].size() / 3;
-    m_rows_to_vertices.resize(n0);
-    std::iota(m_rows_to_vertices.begin(), m_rows_to_vertices.end(), Index(0));
+    m_rows_to_vertices = std::move(vertex_order);
+    if(m_rows_to_vertices.size() != n0)
+    {
+      m_rows_to_vertices.resize(n0);
+      std::iota(m_rows_to_vertices.begin(), m_rows_to_vertices.end(), Index(0));
+    }
     m_scaled = &geometry_for_computations(m_values[0], m_scaled_xyz) != &m_values[0];
   }
 
@@ -490,6 +498,12 @@ std::vector<std::vector<double> > read_input_values(const Indexed_mesh<TriangleM
  *     \cgalParamType{a class model of `Kernel`}
  *     \cgalParamDefault{a `CGAL::Kernel_traits` compatible with the point type}
  *   \cgalParamNEnd
+ *   \cgalParamNBegin{memory_order}
+ *     \cgalParamDescription{the order of the pyramid's vertices and faces: the input's, or a spatial order of its own,
+ *                           which makes large meshes whose numbering is scattered decompose faster (see `Memory_order`)}
+ *     \cgalParamType{`CGAL::Surface_mesh_multiresolution::Memory_order`}
+ *     \cgalParamDefault{`Memory_order::AUTOMATIC`}
+ *   \cgalParamNEnd
  *   \cgalParamNBegin{visitor}
  *     \cgalParamDescription{reports progress per level}
  *     \cgalParamType{a class with the functions of `Decomposition_visitor_base`}
@@ -542,8 +556,24 @@ Pyramid<TriangleMesh> decompose(const TriangleMesh& tm, const NamedParameters& n
   faces.swap(im.triangles);
   auto input_vertices = std::move(im.vertices);
   im = internal::Indexed_mesh<TriangleMesh>();   // not needed any more
+  // the pyramid's own order (Memory_order): values and faces permuted once, the rows of M_0 in it
+  std::vector<internal::Index> vertex_order;
+  const Memory_order order = choose_parameter(get_parameter(np, internal_np::memory_order), Memory_order::AUTOMATIC);
+  if(order == Memory_order::SPATIAL
+     || (order == Memory_order::AUTOMATIC && values[0].size() / 3 >= internal::automatic_spatial_order_size
+         && internal::numbering_is_scattered(values[0].size() / 3, faces)))
+  {
+    std::vector<internal::Index>& face_order = internal::Pyramid_access::face_order(pyr);
+    internal::spatial_order(values[0], faces, vertex_order, face_order);
+    if(!vertex_order.empty())
+    {
+      for(std::size_t c = 0; c < values.size(); ++c)
+        internal::permute_values(vertex_order, pyr.dimensions()[c], values[c]);
+      internal::permute_faces(vertex_order, face_order, faces);
+    }
+  }
   internal::Decomposition<TriangleMesh, Cost_model, Visitor> decomposition(pyr, std::move(values), std::move(faces),
-                                                                           cost_model, scheme, visitor);
+                                                                           std::move(vertex_order), cost_model, scheme, visitor);
   decomposition.run(max_levels, min_vertices);
   // the positions the weights derive from, read again (validated above): no copy of them is
   // held through the first level, where a decomposition's memory peaks

@@ -37,6 +37,10 @@ namespace internal {
 //   u64      payload size in bytes
 //   payload  the pyramid's arrays, each as u64 length + elements
 //   u64      FNV-1a 64-bit hash of the payload
+// Payload of version 4: that of version 3, then the pyramid's own order (Memory_order): the
+// input number of every row of M_0 and the input position of every face of M_0, each an empty
+// array where it is the input's (a file of version 3 is read with both empty). The values of
+// kind 1 below are by input number in both versions.
 // Payload of version 3: u32 relaxation scheme, u64 number of input vertices n, the channel
 // dimensions, u64 K, the weight positions (3 n), the face array of M_0, per level the odd rows
 // and the collapse targets; then per channel a u8 kind and its data:
@@ -63,7 +67,7 @@ namespace internal {
 // Why by hand: no serialisation library is among the dependencies, and the format is
 // a handful of arrays.
 constexpr char pyramid_magic[9] = "SMRPYR01";
-constexpr std::uint32_t pyramid_format_version = 3;
+constexpr std::uint32_t pyramid_format_version = 4;
 
 inline std::uint64_t fnv1a(const std::string& bytes)
 {
@@ -188,8 +192,8 @@ bool read_payload(const std::string& bytes, std::uint32_t version, Pyramid<Trian
   Pyramid_access::dimensions(p).assign(dims.begin(), dims.end());
   std::vector<Pyramid_level>& L = Pyramid_access::levels(p);
   L.resize(static_cast<std::size_t>(levels));
-  if(version == 3)
-    return read_payload_v3(r, p, error);
+  if(version >= 3)
+    return read_payload_v3(r, p, error, version);
   for(Pyramid_level& l : L)
     if(!read_level(r, version, dims.size(), l)) return false;
   std::vector<Index> coarse_vertices;
@@ -324,7 +328,10 @@ void write_payload_v3(const Pyramid<TriangleMesh>& pyr, Byte_writer& w)
     values_needed = values_needed || state(c) == Analysis_state::OF_VALUES;
   Values_workspace ws;
   if(values_needed)
+  {
     reconstruct_values(pyr, 0, ws);             // exact; ws.faces: the face array of M_0, unless weights are stored
+    values_by_input_number(pyr, ws.values);      // (what analyse_levels() and the file take)
+  }
   if(ws.faces.empty())
     reconstruct_faces(pyr, 0, ws.faces);
   std::vector<unsigned char> analysed(nc, 1);
@@ -357,12 +364,15 @@ void write_payload_v3(const Pyramid<TriangleMesh>& pyr, Byte_writer& w)
       w.array(pyr.coarse_values()[c]);
     }
   }
+  const std::vector<Index>& rows = pyr.vertices(0);   // version 4: the pyramid's own order, if any
+  w.array(std::is_sorted(rows.begin(), rows.end()) ? std::vector<Index>() : rows);
+  w.array(Pyramid_access::face_order(pyr));
 }
 
 // the rest of a version 3 payload after K (see above) into `p`, whose scheme, number of input
 // vertices, dimensions and number of levels are set; then every derived array
 template <typename TriangleMesh>
-bool read_payload_v3(Byte_reader& r, Pyramid<TriangleMesh>& p, std::string& error)
+bool read_payload_v3(Byte_reader& r, Pyramid<TriangleMesh>& p, std::string& error, std::uint32_t version = 3)
 {
   const std::size_t n0 = p.number_of_input_vertices(), nc = p.number_of_channels();
   std::vector<Pyramid_level>& L = Pyramid_access::levels(p);
@@ -399,8 +409,19 @@ bool read_payload_v3(Byte_reader& r, Pyramid<TriangleMesh>& p, std::string& erro
     Pyramid_access::coarse_values(p).resize(nc);
     if(!r.array(Pyramid_access::coarse_values(p)[c])) return false;
   }
+  // version 4: the pyramid's own order (Memory_order), empty where it is the input's
+  std::vector<Index> vertex_order;
+  std::vector<Index>& face_order = Pyramid_access::face_order(p);
+  face_order.clear();
+  if(version >= 4 && (!r.array(vertex_order) || !r.array(face_order))) return false;
   if(!r.at_end()) return false;
-  error = derive_rows(p);
+  if(!(vertex_order.empty() || (vertex_order.size() == n0 && is_permutation_of_first(vertex_order)))
+     || !(face_order.empty() || (3 * face_order.size() == F.size() && is_permutation_of_first(face_order))))
+  {
+    error = "the pyramid's vertex or face order is not a permutation of the input's";
+    return false;
+  }
+  error = derive_rows(p, vertex_order);
   for(std::size_t k = 0; k < L.size() && error.empty(); ++k)
   {
     error = replay_collapses(L[k], F);
@@ -474,7 +495,7 @@ bool write_pyramid(std::ostream& os, const Pyramid<TriangleMesh>& pyr)
   // format 3 derives the weights from the positions; a pyramid that stores its weights (read
   // from a file of format 1 or 2) is written in format 2
   const std::uint32_t version = pyr.weight_positions().empty() ? 2 : internal::pyramid_format_version;
-  if(version == 3)
+  if(version == internal::pyramid_format_version)
     internal::write_payload_v3(pyr, w);
   else
   {
@@ -508,7 +529,7 @@ bool write_pyramid(std::ostream& os, const Pyramid<TriangleMesh>& pyr)
 
 /*!
  * \ingroup PkgSurfaceMeshMultiresolutionRef
- * reads a pyramid written by `write_pyramid()` (format version 3, or versions 1 and 2 of
+ * reads a pyramid written by `write_pyramid()` (format version 4, or versions 1 to 3 of
  * earlier releases, whose pyramids keep the weights they store). The derived arrays (records
  * of the collapses, weights, details of unedited channels) are computed again: reading costs
  * about a third of a decomposition. Files are untrusted input: besides the header, sizes and checksum, the content
@@ -528,7 +549,7 @@ bool read_pyramid(std::istream& is, Pyramid<TriangleMesh>& pyr, std::string& err
   if(!is.read(magic, 8) || std::memcmp(magic, internal::pyramid_magic, 8) != 0) return false;
   if(!is.read(reinterpret_cast<char*>(&version), 4) || version < 1 || version > internal::pyramid_format_version)
   {
-    error = "pyramid format version " + std::to_string(version) + " is not supported (versions 1 to 3 are)";
+    error = "pyramid format version " + std::to_string(version) + " is not supported (versions 1 to 4 are)";
     return false;
   }
   error = "truncated header or foreign byte order";

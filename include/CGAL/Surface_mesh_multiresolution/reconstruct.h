@@ -290,8 +290,79 @@ void reconstruct_arrays(const Pyramid<TriangleMesh>& pyr, std::size_t level,
     reconstruct_faces(pyr, level, F);
 }
 
-// Writes the vertices `verts` (input numbers, increasing) with their values and the faces
-// into `out`, emptied first, with the channel maps of `np`. compute_faces(F) gives the faces
+// The place in the output of each row whose input number is verts[r]: its rank among verts
+// (the output lists vertices in increasing input number); empty when verts increase (the
+// identity). n0: the number of input vertices.
+inline std::vector<Index> output_places(const std::vector<Index>& verts, std::size_t n0)
+{
+  if(std::is_sorted(verts.begin(), verts.end()))
+    return std::vector<Index>();
+  std::vector<Index> rank(n0 + 1, 0);
+  for(Index g : verts)
+    rank[g + 1] = 1;
+  for(std::size_t g = 0; g < n0; ++g)
+    rank[g + 1] += rank[g];
+  std::vector<Index> place(verts.size());
+  for(std::size_t r = 0; r < verts.size(); ++r)
+    place[r] = rank[verts[r]];
+  return place;
+}
+
+// F (rows) renamed to the output's places (output_places(); none: unchanged) and, with a face
+// order (the input position of each face: a level-0 face array of a pyramid in its own order),
+// its faces put at their input positions
+inline void faces_in_output_order(const std::vector<Index>& place, const std::vector<Index>* face_order, std::vector<Index>& F)
+{
+  if(!place.empty())
+    parallel_for_blocks(F.size(), [&](std::size_t first, std::size_t last) {
+      for(std::size_t i = first; i < last; ++i)
+        F[i] = place[F[i]];
+    });
+  if(face_order != nullptr && !face_order->empty())
+  {
+    CGAL_precondition(face_order->size() * 3 == F.size());
+    std::vector<Index> G(F.size());
+    parallel_for_blocks(face_order->size(), [&](std::size_t first, std::size_t last) {
+      for(std::size_t p = first; p < last; ++p)
+        copy_values(F.data() + 3 * p, 3, G.data() + 3 * std::size_t((*face_order)[p]));
+    });
+    F.swap(G);
+  }
+}
+
+// values of every channel in the rows of M_0 put by input number (values[c][g * dim]: the
+// value of input vertex g), whatever the order of the pyramid's rows (Memory_order)
+template <typename TriangleMesh>
+void values_by_input_number(const Pyramid<TriangleMesh>& pyr, std::vector<std::vector<double> >& values)
+{
+  const std::vector<Index>& rows = pyr.vertices(0);
+  if(std::is_sorted(rows.begin(), rows.end()))
+    return;                                                  // rows are the input numbers
+  for(std::size_t c = 0; c < values.size(); ++c)
+  {
+    const std::size_t dim = pyr.dimensions()[c];
+    std::vector<double> by_input(values[c].size());
+    parallel_for_blocks(rows.size(), [&](std::size_t first, std::size_t last) {
+      for(std::size_t r = first; r < last; ++r)
+        copy_values(values[c].data() + r * dim, dim, by_input.data() + std::size_t(rows[r]) * dim);
+    });
+    values[c].swap(by_input);
+  }
+}
+
+// the values of every channel on M_0 by input number (values_by_input_number())
+template <typename TriangleMesh>
+void reconstruct_input_values(const Pyramid<TriangleMesh>& pyr, std::vector<std::vector<double> >& values)
+{
+  std::vector<Index> no_faces;
+  reconstruct_arrays(pyr, 0, values, no_faces, false);
+  values_by_input_number(pyr, values);
+}
+
+// Writes the vertices `verts` (input numbers of the rows) with their values and the faces
+// into `out`, emptied first, with the channel maps of `np`; the output lists the vertices in
+// increasing input number and, with `face_order` (level 0 of a pyramid in its own order), the
+// faces in the input's order. compute_faces(F) gives the faces
 // (rows of verts), compute_values(values) the values of every channel in rows of verts
 // (values[c][r * dim] is the value of verts[r]); the output's connectivity and the values are
 // computed at the same time (with TBB), they are independent. With `keep_connectivity`,
@@ -302,7 +373,8 @@ void reconstruct_arrays(const Pyramid<TriangleMesh>& pyr, std::size_t level,
 template <typename TriangleMesh, typename OutputMesh, typename NamedParameters, typename ComputeFaces, typename ComputeValues>
 void write_output_mesh(const Pyramid<TriangleMesh>& pyr, const std::vector<Index>& verts,
                        const ComputeFaces& compute_faces, const ComputeValues& compute_values,
-                       OutputMesh& out, const NamedParameters& np, bool keep_connectivity = false, std::size_t number_of_faces = 0)
+                       OutputMesh& out, const NamedParameters& np, bool keep_connectivity = false, std::size_t number_of_faces = 0,
+                       const std::vector<Index>* face_order = nullptr)
 {
   using parameters::choose_parameter;
   using parameters::get_parameter;
@@ -330,6 +402,7 @@ void write_output_mesh(const Pyramid<TriangleMesh>& pyr, const std::vector<Index
   Vertex_point_map vpm = choose_parameter(get_parameter(np, CGAL::internal_np::vertex_point),
                                           get_property_map(CGAL::vertex_point, out));
 
+  const std::vector<Index> place = output_places(verts, pyr.number_of_input_vertices());
   std::vector<vertex_descriptor> ordered;
   ordered.reserve(verts.size());
   std::vector<std::vector<double> > values;
@@ -348,9 +421,17 @@ void write_output_mesh(const Pyramid<TriangleMesh>& pyr, const std::vector<Index
     run_beside([&] {
       std::vector<Index> F;
       compute_faces(F);
+      faces_in_output_order(place, face_order, F);
       clear_keeping_properties(out, 0);
       build_triangle_mesh(out, verts.size(), F, ordered);
     }, [&] { compute_values(values); });
+  if(!place.empty())
+  {
+    std::vector<vertex_descriptor> by_row(ordered.size());
+    for(std::size_t r = 0; r < by_row.size(); ++r)
+      by_row[r] = ordered[place[r]];
+    ordered.swap(by_row);
+  }
   for(std::size_t r = 0; r < verts.size(); ++r)
     put(vpm, ordered[r], point(values[0][3 * r], values[0][3 * r + 1], values[0][3 * r + 2]));
   // channels, written through the same traits as they were read
@@ -399,7 +480,7 @@ void write_output_mesh(const Pyramid<TriangleMesh>& pyr, const std::vector<Index
  *   \cgalParamNEnd
  *   \cgalParamNBegin{keep_connectivity}
  *     \cgalParamDescription{if `true`\, `out` already holds \f$ M_k \f$'s connectivity with its vertices in the
- *                           order of `pyr.vertices(k)`: the result of an earlier `reconstruct()` of the same level of
+ *                           order `reconstruct()` writes them (increasing input number): the result of an earlier `reconstruct()` of the same level of
  *                           this pyramid or of a copy of it (filtered\, thresholded). Only the positions and the
  *                           attribute values are written; no vertex split is replayed and no element is created,
  *                           which makes re-filtering several times faster}
@@ -429,7 +510,8 @@ void reconstruct(const Pyramid<TriangleMesh>& pyr, OutputMesh& out, const NamedP
                                 internal::reconstruct_values(pyr, level, ws);
                                 values.swap(ws.values);
                               },
-                              out, np, keep_connectivity, keep_connectivity ? pyr.number_of_faces(level) : 0);
+                              out, np, keep_connectivity, keep_connectivity ? pyr.number_of_faces(level) : 0,
+                              level == 0 ? &internal::Pyramid_access::face_order(pyr) : nullptr);
 }
 
 /*!

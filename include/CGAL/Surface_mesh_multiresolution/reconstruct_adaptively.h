@@ -100,6 +100,20 @@ void build_adaptive_hierarchy(const Pyramid<TriangleMesh>& pyr, Adaptive_hierarc
     }
     stars_of_level(lev, F, odd_index, h.star[k], h.star_offsets[k]);
   }
+  // M_0's faces in input numbers, in the input's order (Memory_order: rows and faces may be
+  // in the pyramid's own order)
+  const std::vector<Index>& rows = pyr.vertices(0);
+  if(!std::is_sorted(rows.begin(), rows.end()))
+    for(Index& v : F)
+      v = rows[v];
+  const std::vector<Index>& face_order = Pyramid_access::face_order(pyr);
+  if(!face_order.empty() && face_order.size() * 3 == F.size())
+  {
+    std::vector<Index> G(F.size());
+    for(std::size_t p = 0; p < face_order.size(); ++p)
+      copy_values(F.data() + 3 * p, 3, G.data() + 3 * std::size_t(face_order[p]));
+    F.swap(G);
+  }
   h.finest_faces.swap(F);
 }
 
@@ -199,8 +213,7 @@ void approximation_errors(const Pyramid<TriangleMesh>& pyr, const Adaptive_hiera
 {
   const std::size_t K = pyr.number_of_levels(), n0 = pyr.number_of_input_vertices();
   std::vector<std::vector<double> > values;
-  std::vector<Index> no_faces;
-  reconstruct_arrays(pyr, 0, values, no_faces, false);      // exact input positions
+  reconstruct_input_values(pyr, values);                    // exact input positions, by input number
   std::vector<double> scaled;
   const std::vector<double>& x = geometry_for_computations(values[0], scaled);
   const int e = geometry_scale_exponent(values[0].data(), values[0].size());
@@ -451,10 +464,7 @@ public:
     std::vector<Index> verts;
     std::vector<Index> F = adaptive_faces(m_pyr, m_h, keep, verts);
     if(m_values.empty())
-    {
-      std::vector<Index> no_faces;
-      reconstruct_arrays(m_pyr, 0, m_values, no_faces, false);   // values only; level 0's rows are the input numbers
-    }
+      reconstruct_input_values(m_pyr, m_values);                 // values only, by input number
     write_output_mesh(m_pyr, verts, [&](std::vector<Index>& faces) { faces.swap(F); },
                       [&](std::vector<std::vector<double> >& values) {
                         values.resize(m_values.size());

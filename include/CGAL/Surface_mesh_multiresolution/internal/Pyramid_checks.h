@@ -30,7 +30,9 @@ namespace internal {
 //  (1) channels: channel 0 has dimension 3, every dimension is in [1, 4096];
 //  (2) rows: n_0 is the number of input vertices; odd_rows of level k are increasing and
 //      below n_k; even_rows are the other rows, increasing; n_{k+1} = |even_rows_k|;
-//      vertices(0) = 0..n_0-1 and vertices(k+1)[j] = vertices(k)[even_rows_k[j]];
+//      vertices(0) a permutation of 0..n_0-1 (the identity but for a pyramid in its own
+//      order, Memory_order; the face order then a permutation of M_0's faces) and
+//      vertices(k+1)[j] = vertices(k)[even_rows_k[j]];
 //  (3) weights: the pyramid has weight positions (3 finite doubles per input vertex), or
 //      every level stores its weights; stored weights are a CSR over n_k rows (offsets from 0,
 //      non-decreasing, ending at the number of entries), columns below n_k, finite values;
@@ -98,13 +100,29 @@ inline bool is_halfedge_face_set(std::size_t n, const std::vector<Index>& F)
   return true;
 }
 
-// (2): the even rows and the vertices of every level from the odd rows (what a file does not store)
+// whether a holds every number below a.size() once
+inline bool is_permutation_of_first(const std::vector<Index>& a)
+{
+  std::vector<unsigned char> seen(a.size(), 0);
+  for(Index x : a)
+  {
+    if(x >= a.size() || seen[x])
+      return false;
+    seen[x] = 1;
+  }
+  return true;
+}
+
+// (2): the even rows and the vertices of every level from the odd rows (what a file does not
+// store) and level 0's vertex order (the input number of every row of M_0, a permutation;
+// empty: the input's)
 template <typename TriangleMesh>
-std::string derive_rows(Pyramid<TriangleMesh>& pyr)
+std::string derive_rows(Pyramid<TriangleMesh>& pyr, const std::vector<Index>& vertex_order = std::vector<Index>())
 {
   std::vector<Pyramid_level>& levels = Pyramid_access::levels(pyr);
   std::vector<Index> vertices(pyr.number_of_input_vertices());
-  for(std::size_t i = 0; i < vertices.size(); ++i) vertices[i] = static_cast<Index>(i);
+  CGAL_precondition(vertex_order.empty() || vertex_order.size() == vertices.size());
+  for(std::size_t i = 0; i < vertices.size(); ++i) vertices[i] = vertex_order.empty() ? static_cast<Index>(i) : vertex_order[i];
   for(std::size_t k = 0; k < levels.size(); ++k)
   {
     Pyramid_level& lev = levels[k];

@@ -26,3 +26,4 @@ CGAL_SMR_add_named_parameter(target_number_of_vertices_t, target_number_of_verti
 CGAL_SMR_add_named_parameter(keep_connectivity_t, keep_connectivity, keep_connectivity)
 CGAL_SMR_add_named_parameter(adaptive_criterion_t, adaptive_criterion, adaptive_criterion)
 CGAL_SMR_add_named_parameter(remove_isolated_vertices_t, remove_isolated_vertices, remove_isolated_vertices)
+CGAL_SMR_add_named_parameter(memory_order_t, memory_order, memory_order)
