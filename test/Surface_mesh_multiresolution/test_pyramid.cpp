@@ -584,6 +584,152 @@ TEST_CASE("the pyramid does not depend on how the input numbers its vertices", "
   }
 }
 
+// A pyramid in a spatial order of its own (Memory_order::SPATIAL, as AUTOMATIC gives a large
+// mesh whose numbering is scattered) gives the user what a pyramid in the input's order gives:
+// level 0 is the input exactly (its vertex order, positions, channel values and face order),
+// every level lists its vertices in increasing input number at their input positions, files
+// and adaptive reconstructions keep that, and the pyramid is the same on 1 and 4 threads.
+TEST_CASE("a pyramid in its own memory order gives the input's outputs exactly", "[pyramid][order]")
+{
+  typedef SMR::internal::Index Index;
+  // the order test: a grid as generated is in order, the same grid renumbered at random is not
+  {
+    const Mesh big = smr_test::planar_grid<Mesh>(100, 0.3);
+    std::vector<std::size_t> shuffled(num_vertices(big));
+    std::iota(shuffled.begin(), shuffled.end(), std::size_t(0));
+    std::shuffle(shuffled.begin(), shuffled.end(), std::mt19937(3));
+    auto triangles = [](const Mesh& m) {
+      std::vector<Index> t;
+      for(auto f : faces(m))
+        for(auto v : vertices_around_face(halfedge(f, m), m))
+          t.push_back(Index(v));
+      return t;
+    };
+    std::vector<Index> t = triangles(big), u = t;
+    for(Index& v : u)
+      v = Index(shuffled[v]);
+    CHECK(!SMR::internal::numbering_is_scattered(num_vertices(big), t));
+    CHECK(SMR::internal::numbering_is_scattered(num_vertices(big), u));
+    // the spatial order is a pair of permutations; coordinates whose extent overflows give none
+    std::vector<double> xyz;
+    for(auto v : vertices(big))
+      for(int c = 0; c < 3; ++c)
+        xyz.push_back(big.point(v)[c]);
+    std::vector<Index> vo, fo;
+    SMR::internal::spatial_order(xyz, u, vo, fo);
+    CHECK(SMR::internal::is_permutation_of_first(vo));
+    CHECK(SMR::internal::is_permutation_of_first(fo));
+    REQUIRE(vo.size() == num_vertices(big));
+    REQUIRE(3 * fo.size() == u.size());
+    xyz[0] = -1.7e308;
+    xyz[3] = 1.7e308;
+    SMR::internal::spatial_order(xyz, u, vo, fo);
+    CHECK((vo.empty() && fo.empty()));
+  }
+  Mesh grid = smr_test::planar_grid<Mesh>(30, 0.3);   // borders
+  CGAL::Random rng(13);
+  for(auto v : vertices(grid))
+    grid.point(v) = grid.point(v) + Vector_3(0, 0, rng.get_double(-.05, .05));
+  Mesh meshes[] = {smr_test::icosphere<Mesh>(3), grid};
+  for(Mesh& m0 : meshes)
+  {
+    auto scalar0 = m0.add_property_map<Mesh::Vertex_index, double>("v:scalar").first;
+    for(auto v : vertices(m0))
+      scalar0[v] = 1e-3 * m0.point(v).x() * m0.point(v).y() - 273.15 + 1e5 * m0.point(v).z();
+    std::vector<std::size_t> shuffled(num_vertices(m0));
+    std::iota(shuffled.begin(), shuffled.end(), std::size_t(0));
+    std::shuffle(shuffled.begin(), shuffled.end(), std::mt19937(7));
+    const Mesh m = renumbered(m0, shuffled);
+    auto scalar = m.property_map<Mesh::Vertex_index, double>("v:scalar").first;
+    const auto np = SMR::parameters::memory_order(SMR::Memory_order::SPATIAL).vertex_attribute_maps(std::make_tuple(scalar));
+    const SMR::Pyramid<Mesh> pyr = SMR::decompose(m, np);
+    REQUIRE(pyr.number_of_levels() > 3);
+    const auto& v0 = pyr.vertices(0);
+    CHECK(!std::is_sorted(v0.begin(), v0.end()));            // rows in the pyramid's own order
+    CHECK(SMR::internal::is_permutation_of_first(std::vector<Index>(v0.begin(), v0.end())));
+    // level 0: the input, its vertices, values and faces in the input's order
+    auto faces_in_order = [](const Mesh& x) {
+      std::vector<std::size_t> f;
+      for(auto h : faces(x))
+        for(auto v : vertices_around_face(halfedge(h, x), x))
+          f.push_back(std::size_t(v));
+      return f;
+    };
+    {
+      Mesh out;
+      auto out_scalar = out.add_property_map<Mesh::Vertex_index, double>("v:scalar").first;
+      SMR::reconstruct(pyr, out, SMR::parameters::vertex_attribute_maps(std::make_tuple(out_scalar)));
+      CHECK(smr_test::positions_in_order(out) == smr_test::positions_in_order(m));
+      CHECK(faces_in_order(out) == faces_in_order(m));
+      bool same_values = true;
+      for(auto v : vertices(m))
+        same_values = same_values && out_scalar[v] == scalar[v];
+      CHECK(same_values);
+    }
+    // every level: vertices in increasing input number at their input positions; writing the
+    // values again on the same connectivity gives the same mesh
+    const auto input = smr_test::positions_in_order(m);
+    for(std::size_t k : {std::size_t(1), std::size_t(3), pyr.number_of_levels()})
+    {
+      INFO("level " << k);
+      Mesh lk;
+      SMR::reconstruct(pyr, lk, SMR::parameters::level(k));
+      std::vector<Index> ids(pyr.vertices(k).begin(), pyr.vertices(k).end());
+      std::sort(ids.begin(), ids.end());
+      const auto pos = smr_test::positions_in_order(lk);
+      REQUIRE(pos.size() == ids.size());
+      bool at_input = true;
+      for(std::size_t r = 0; r < ids.size(); ++r)
+        at_input = at_input && pos[r] == input[ids[r]];
+      CHECK(at_input);
+      CHECK(CGAL::is_valid_polygon_mesh(lk));
+      Mesh again = lk;
+      for(auto v : vertices(again))
+        again.point(v) = Point_3(0, 0, 0);
+      SMR::reconstruct(pyr, again, SMR::parameters::level(k).keep_connectivity(true));
+      CHECK(smr_test::positions_in_order(again) == pos);
+    }
+    // the adaptive reconstruction that keeps every vertex is the input, in its order
+    {
+      Mesh all;
+      SMR::reconstruct_adaptively(pyr, all, 0.);
+      CHECK(smr_test::positions_in_order(all) == smr_test::positions_in_order(m));
+      CHECK(faces_in_order(all) == faces_in_order(m));
+    }
+    // a file keeps the order: the same rows, the input back exactly
+    {
+      std::stringstream file;
+      REQUIRE(SMR::IO::write_pyramid(file, pyr));
+      SMR::Pyramid<Mesh> back;
+      std::string error;
+      REQUIRE(SMR::IO::read_pyramid(file, back, error));
+      for(std::size_t k = 0; k <= pyr.number_of_levels(); ++k)
+        CHECK(back.vertices(k) == pyr.vertices(k));
+      Mesh out;
+      SMR::reconstruct(back, out);
+      CHECK(smr_test::positions_in_order(out) == smr_test::positions_in_order(m));
+      CHECK(faces_in_order(out) == faces_in_order(m));
+    }
+#ifdef CGAL_LINKED_WITH_TBB
+    // the same pyramid on 1 and 4 threads
+    {
+      tbb::task_arena four(4);
+      SMR::Pyramid<Mesh> p4;
+      four.execute([&] { p4 = SMR::decompose(m, np); });
+      REQUIRE(p4.number_of_levels() == pyr.number_of_levels());
+      bool same = p4.vertices(0) == pyr.vertices(0);
+      for(std::size_t j = 1; j <= pyr.number_of_levels(); ++j)
+        for(std::size_t c = 0; c < 2; ++c)
+          same = same && std::memcmp(p4.details(j, c).data(), pyr.details(j, c).data(), 8 * pyr.details(j, c).size()) == 0;
+      CHECK(same);
+    }
+#endif
+    // AUTOMATIC keeps a small mesh in the input's order
+    const SMR::Pyramid<Mesh> automatic = SMR::decompose(m);
+    CHECK(std::is_sorted(automatic.vertices(0).begin(), automatic.vertices(0).end()));
+  }
+}
+
 TEST_CASE("other SMS cost policies drive the downsampling", "[pyramid][cost]")
 {
   const Mesh m = smr_test::icosphere<Mesh>(3);
