@@ -30,6 +30,7 @@
 #include <functional>
 #include <limits>
 #include <sstream>
+#include <numeric>
 #include <string>
 #include <utility>
 #include <vector>
@@ -204,6 +205,8 @@ struct Format3_parts
   std::vector<std::vector<double> > details;            // kind 2: per level
   std::vector<SMR::internal::Corrections> corrections;  // kind 2: per level
   std::vector<double> coarse;                            // kind 2
+  std::uint32_t version = 3;                             // 4: the pyramid's own order follows
+  std::vector<Index> vertex_order, face_order;           // version 4 (empty: the input's)
   std::string trailing;
 
   explicit Format3_parts(const SMR::Pyramid<Mesh>& p)
@@ -236,9 +239,14 @@ struct Format3_parts
       for(std::size_t k = 0; k < details.size(); ++k) { w.array(details[k]); w.corrections(corrections[k]); }
       w.array(coarse);
     }
+    if(version >= 4)
+    {
+      w.array(vertex_order);
+      w.array(face_order);
+    }
     const std::string payload = w.bytes() + trailing;
     std::string out(SMR::internal::pyramid_magic, 8);
-    const std::uint32_t version = 3, order = 0x01020304u;
+    const std::uint32_t order = 0x01020304u;
     const std::uint64_t size = payload.size(), hash = SMR::internal::fnv1a(payload);
     out.append(reinterpret_cast<const char*>(&version), 4);
     out.append(reinterpret_cast<const char*>(&order), 4);
@@ -308,6 +316,14 @@ TEST_CASE("crafted pyramid files are refused with a reason", "[attack][io]")
   // read back as the decomposition made them, each edit is refused
   const Format3_parts parts(decomposed);
   {
+    Format3_parts v4 = parts;   // format 4 with the input's order: the same pyramid
+    v4.version = 4;
+    SMR::Pyramid<Mesh> p;
+    std::string error;
+    REQUIRE(read_bytes(v4.bytes(), p, error));
+    CHECK(bytes_of(p) == bytes_of(decomposed));
+  }
+  {
     SMR::Pyramid<Mesh> p;
     std::string error;
     REQUIRE(read_bytes(parts.bytes(), p, error));
@@ -353,6 +369,13 @@ TEST_CASE("crafted pyramid files are refused with a reason", "[attack][io]")
     {"a correction outside its level", [](Format3_parts& f) { f.kind = 2; f.corrections[0].emplace_back(Index(3 * f.n0), 1.); }},
     {"coarsest values of the wrong size", [](Format3_parts& f) { f.kind = 2; f.coarse.push_back(1.); }},
     {"bytes after the payload", [](Format3_parts& f) { f.trailing = "x"; }},
+    {"a vertex order that is not a permutation (format 4)", [](Format3_parts& f) {
+       f.version = 4; f.vertex_order.resize(f.n0); std::iota(f.vertex_order.begin(), f.vertex_order.end(), Index(0)); f.vertex_order[1] = 0; }},
+    {"a vertex order of the wrong size (format 4)", [](Format3_parts& f) {
+       f.version = 4; f.vertex_order.resize(f.n0 - 1); std::iota(f.vertex_order.begin(), f.vertex_order.end(), Index(0)); }},
+    {"a face order with a position outside M_0 (format 4)", [](Format3_parts& f) {
+       f.version = 4; f.face_order.resize(f.faces.size() / 3); std::iota(f.face_order.begin(), f.face_order.end(), Index(0));
+       f.face_order.back() = Index(f.face_order.size()); }},
   };
   for(const auto& edit : edits3)
   {
@@ -374,7 +397,7 @@ TEST_CASE("crafted pyramid files are refused with a reason", "[attack][io]")
   std::uint32_t version = 9;
   std::memcpy(&v9[8], &version, 4);
   CHECK_FALSE(read_bytes(v9, p, error));
-  CHECK(error == "pyramid format version 9 is not supported (versions 1 to 3 are)");
+  CHECK(error == "pyramid format version 9 is not supported (versions 1 to 4 are)");
 }
 
 TEST_CASE("pyramid files of format version 1 are read and describe their mesh exactly", "[attack][io]")

@@ -453,7 +453,8 @@ int main(int argc, char** argv)
   app.add_flag("-q,--quiet", quiet, "no progress or notes on stderr");
   app.add_flag("--spatial-order", spatial_order,
                "put the vertices (Hilbert order) and faces of every mesh read in spatial order before working on it: "
-               "faster on large meshes stored in no spatial order; the outputs list vertices and faces in that order");
+               "faster on large meshes stored in no spatial order (decompose orders such meshes itself and keeps its outputs in "
+               "the file's order); the outputs list vertices and faces in that order");
   app.fallthrough();      // --quiet and --spatial-order before or after the subcommand
   const std::vector<std::string> schemes = {"curvature", "sod", "uniform"};
   std::string in, out, scheme = "curvature", guide;
