@@ -249,19 +249,20 @@ inline void shrink_details_towards_threshold(std::vector<double>& d, std::size_t
   }
 }
 
-// Channel c of the pyramid analysed again from its new values x on M_0 (rows = input
-// numbers): the details, corrections and coarsest values then describe x exactly.
+// Channel c of the pyramid analysed again from its new values x on M_0 (in M_0's rows): the
+// details, corrections and coarsest values then describe x exactly.
 template <typename TriangleMesh>
 void analyse_again(Pyramid<TriangleMesh>& pyr, std::size_t c, const std::vector<double>& x)
 {
   std::vector<std::vector<double> > values(pyr.number_of_channels());
   values[c] = x;
+  values_by_input_number(pyr, values);   // (what analyse_levels() reads; the rows may be in the pyramid's own order)
   std::vector<Pyramid_level>& levels = Pyramid_access::levels(pyr);
   analyse_levels(pyr, {c}, values, [&](std::size_t k, std::size_t, std::vector<double>& d, Corrections& corrections) {
     levels[k].details[c].swap(d);
     levels[k].corrections[c].swap(corrections);
   });
-  Pyramid_access::coarse_values(pyr)[c] = coarsest_values(pyr, pyr.channel_dimension(c), x);
+  Pyramid_access::coarse_values(pyr)[c] = coarsest_values(pyr, pyr.channel_dimension(c), values[c]);
   Pyramid_access::set_analysis_state(pyr, c, Analysis_state::OF_VALUES);
 }
 

@@ -341,6 +341,8 @@ void values_by_input_number(const Pyramid<TriangleMesh>& pyr, std::vector<std::v
   for(std::size_t c = 0; c < values.size(); ++c)
   {
     const std::size_t dim = pyr.dimensions()[c];
+    if(values[c].size() != rows.size() * dim)
+      continue;                                              // a channel not given (empty)
     std::vector<double> by_input(values[c].size());
     parallel_for_blocks(rows.size(), [&](std::size_t first, std::size_t last) {
       for(std::size_t r = first; r < last; ++r)
