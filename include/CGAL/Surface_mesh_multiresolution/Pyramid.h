@@ -29,7 +29,7 @@ namespace internal {
 // M_k. The invariants (checked by check_pyramid(), Pyramid_checks.h) are stated there.
 struct Pyramid_level
 {
-  std::vector<Index> vertices;                 // input number of every row (increasing in the input order; see Memory_order); derived, not saved
+  std::vector<Index> vertices;                 // input number of every row (increasing but in a pyramid of its own order, Memory_order); derived, not saved
   // lambda^k over the rows of M_k: stored only in pyramids read from files of format 1 or 2;
   // otherwise empty, and computed from the pyramid's weight_positions() (level_weights.h)
   Sparse_weights weights;

@@ -106,14 +106,7 @@ void build_adaptive_hierarchy(const Pyramid<TriangleMesh>& pyr, Adaptive_hierarc
   if(!std::is_sorted(rows.begin(), rows.end()))
     for(Index& v : F)
       v = rows[v];
-  const std::vector<Index>& face_order = Pyramid_access::face_order(pyr);
-  if(!face_order.empty() && face_order.size() * 3 == F.size())
-  {
-    std::vector<Index> G(F.size());
-    for(std::size_t p = 0; p < face_order.size(); ++p)
-      copy_values(F.data() + 3 * p, 3, G.data() + 3 * std::size_t(face_order[p]));
-    F.swap(G);
-  }
+  faces_in_output_order(std::vector<Index>(), &Pyramid_access::face_order(pyr), F);
   h.finest_faces.swap(F);
 }
 
