@@ -1370,6 +1370,33 @@ TEST_CASE("the candidates' radix sort orders by (cost, halfedge) like a comparis
 }
 
 
+TEST_CASE("the radix sort on a bit field is a stable sort by that field", "[pyramid][cost][order]")
+{
+  // fields of several widths and places, the top one reaching bit 63 (the spatial order's);
+  // few distinct field values (long runs of ties: stability) and many (every pass moves keys);
+  // more keys than a block of the sort's passes
+  std::mt19937_64 rng(11);
+  struct Field { int shift, bits; std::uint64_t values; };
+  for(const Field f : {Field{23, 41, ~std::uint64_t(0)}, Field{23, 41, 7}, Field{5, 20, 1000}, Field{0, 64, ~std::uint64_t(0)},
+                       Field{40, 3, 8}, Field{12, 30, 1}})
+    for(std::size_t n : {std::size_t(0), std::size_t(1), std::size_t(1000), std::size_t(200000)})
+    {
+      const std::uint64_t field_mask = f.bits == 64 ? ~std::uint64_t(0) : (std::uint64_t(1) << f.bits) - 1;
+      std::vector<std::uint64_t> keys(n);
+      for(std::uint64_t& k : keys)
+      {
+        const std::uint64_t value = (f.values == ~std::uint64_t(0) ? rng() : rng() % f.values) & field_mask;
+        const std::uint64_t below = f.shift == 0 ? 0 : rng() & ((std::uint64_t(1) << f.shift) - 1);
+        k = (value << f.shift) | below;                 // the bits above the field are zero
+      }
+      std::vector<std::uint64_t> expected = keys;
+      std::stable_sort(expected.begin(), expected.end(),
+                       [&](std::uint64_t a, std::uint64_t b) { return ((a >> f.shift) & field_mask) < ((b >> f.shift) & field_mask); });
+      SMR::internal::radix_sort_bits(keys.data(), n, f.shift, f.bits);
+      REQUIRE(keys == expected);
+    }
+}
+
 TEST_CASE("the front of the candidates holds the wanted cheapest ones when their sample misleads", "[pyramid][cost]")
 {
   // 40,000 keys: the sampled ones (every s-th from the (s / 2)-th) are the cheapest, so the

@@ -11,6 +11,7 @@
 #include <CGAL/Surface_mesh_multiresolution/internal/config.h>
 #include <CGAL/Surface_mesh_multiresolution/internal/helpers.h>
 #include <CGAL/Surface_mesh_multiresolution/internal/parallel.h>
+#include <CGAL/Surface_mesh_multiresolution/internal/radix_sort.h>
 #include <CGAL/Surface_mesh_multiresolution/internal/Triangle_halfedges.h>
 
 #include <algorithm>
@@ -152,36 +153,6 @@ private:
   int m_halfedge_bits = 0, m_cost_bits = 40;
 };
 
-// the digits of sort_candidates(): passes of 10 bits
-constexpr int sort_digit_bits = 10;
-constexpr std::size_t sort_buckets = std::size_t(1) << sort_digit_bits;
-
-// The counts of the digits (in[i] >> shift) & (sort_buckets - 1), i in [first, last), into
-// hist (sort_buckets entries), through `four` (4 sort_buckets scratch counters): four
-// histograms counted in turn, then summed. Equal digits in a row (nearby costs; exact ties,
-// common on subdivided meshes) made each increment wait on the one before (the dragon's
-// sort: 0.111 -> 0.091 s on one thread).
-inline void count_sort_digits(const std::uint64_t* in, std::size_t first, std::size_t last, int shift,
-                              std::uint32_t* four, std::size_t* hist)
-{
-  constexpr std::size_t buckets = sort_buckets;
-  constexpr std::uint64_t mask = buckets - 1;
-  CGAL_precondition(last - first <= std::size_t(std::numeric_limits<std::uint32_t>::max()));   // 32-bit counters
-  std::fill(four, four + 4 * buckets, std::uint32_t(0));
-  std::size_t i = first;
-  for(; i + 4 <= last; i += 4)
-  {
-    ++four[(in[i] >> shift) & mask];
-    ++four[buckets + ((in[i + 1] >> shift) & mask)];
-    ++four[2 * buckets + ((in[i + 2] >> shift) & mask)];
-    ++four[3 * buckets + ((in[i + 3] >> shift) & mask)];
-  }
-  for(; i < last; ++i)
-    ++four[(in[i] >> shift) & mask];
-  for(std::size_t v = 0; v < buckets; ++v)
-    hist[v] = std::size_t(four[v]) + four[buckets + v] + four[2 * buckets + v] + four[3 * buckets + v];
-}
-
 // The last step of sort_candidates(): the runs of keys of equal cost bits of c[0..n), sorted by
 // those bits, put in the order of tie_order() (see there).
 template <typename TieOrder>
@@ -252,63 +223,7 @@ void order_runs_of_equal_cost_bits(std::uint64_t* c, std::size_t n, const Candid
 template <typename TieOrder>
 void sort_candidates(std::uint64_t* c, std::size_t n, const Candidate_key& key, const TieOrder& tie_order)
 {
-  constexpr int digit_bits = sort_digit_bits;
-  constexpr std::size_t buckets = sort_buckets;
-  constexpr std::uint64_t mask = buckets - 1;
-  const int digits = (key.cost_bits() + digit_bits - 1) / digit_bits;
-  // each pass is a stable counting sort, split into fixed blocks of candidates: a block counts
-  // its digits, then writes its candidates after those of the smaller digits and of the same
-  // digit in the blocks before it. A stable sort has one result, whatever the blocks and threads.
-  constexpr std::size_t block = std::size_t(1) << 16;
-  const std::size_t blocks = (n + block - 1) / block;
-  std::vector<std::size_t> count(blocks * buckets);
-  Key_array scratch(n);
-  std::uint64_t* from = c;
-  std::uint64_t* to = scratch.data();
-  for(int d = 0; d < digits; ++d)
-  {
-    const int shift = key.halfedge_bits() + d * digit_bits;
-    parallel_for_blocks(blocks, [&](std::size_t first, std::size_t last) {
-      std::vector<std::uint32_t> four(4 * sort_buckets);
-      for(std::size_t b = first; b < last; ++b)
-        count_sort_digits(from, b * block, (std::min)(n, (b + 1) * block), shift, four.data(),
-                          count.data() + b * sort_buckets);
-    }, 1);
-    std::size_t sum = 0;
-    bool one_digit = false;
-    for(std::size_t v = 0; v < buckets && !one_digit; ++v)
-    {
-      std::size_t total = 0;
-      for(std::size_t b = 0; b < blocks; ++b)
-        total += count[b * buckets + v];
-      one_digit = (total == n);
-      for(std::size_t b = 0; b < blocks; ++b)
-      {
-        const std::size_t t = count[b * buckets + v];
-        count[b * buckets + v] = sum;
-        sum += t;
-      }
-    }
-    if(one_digit)
-      continue;                                           // one digit for all: nothing to do
-    // (the lambda copies what it reads into locals: through its captured references, every
-    // store made the compiler load the loop bound and the arrays' addresses again)
-    parallel_for_blocks(blocks, [&](std::size_t first, std::size_t last) {
-      const std::uint64_t* in = from;
-      std::uint64_t* out = to;
-      const int s = shift;
-      for(std::size_t b = first; b < last; ++b)
-      {
-        std::size_t* pos = count.data() + b * buckets;
-        for(std::size_t i = b * block, e = (std::min)(n, (b + 1) * block); i < e; ++i)
-          out[pos[(in[i] >> s) & mask]++] = in[i];
-      }
-    }, 1);
-    std::swap(from, to);
-  }
-  if(from != c)
-    std::copy(from, from + n, c);
-  scratch = Key_array();
+  radix_sort_bits(c, n, key.halfedge_bits(), key.cost_bits());
   order_runs_of_equal_cost_bits(c, n, key, tie_order);
 }
 

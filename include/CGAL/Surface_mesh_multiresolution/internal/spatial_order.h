@@ -10,6 +10,7 @@
 
 #include <CGAL/Surface_mesh_multiresolution/internal/config.h>
 #include <CGAL/Surface_mesh_multiresolution/internal/parallel.h>
+#include <CGAL/Surface_mesh_multiresolution/internal/radix_sort.h>
 
 #include <algorithm>
 #include <cmath>
@@ -17,9 +18,6 @@
 #include <limits>
 #include <vector>
 
-#ifdef CGAL_LINKED_WITH_TBB
-#include <tbb/parallel_sort.h>
-#endif
 
 namespace CGAL {
 namespace Surface_mesh_multiresolution {
@@ -102,7 +100,7 @@ inline void spatial_order(const std::vector<double>& xyz, const std::vector<Inde
     ++position_bits;
   const double cells = 2097151.;                           // 2^21 - 1
   const double scale = cells / extent;
-  std::vector<std::uint64_t> keys(nf);
+  Uninitialized_vector<std::uint64_t> keys(nf);   // every key written below
   parallel_for_blocks(nf, [&](std::size_t first, std::size_t last) {
     for(std::size_t f = first; f < last; ++f)
     {
@@ -119,18 +117,15 @@ inline void spatial_order(const std::vector<double>& xyz, const std::vector<Inde
       keys[f] = (code >> position_bits << position_bits) | f;   // the code's 64 - position_bits leading bits
     }
   });
-#ifdef CGAL_LINKED_WITH_TBB
-  tbb::parallel_sort(keys.begin(), keys.end());
-#else
-  std::sort(keys.begin(), keys.end());
-#endif
+  // keys in input order, sorted stably by their code bits: by (code, position)
+  radix_sort_bits(keys.data(), nf, position_bits, 64 - position_bits);
   const std::uint64_t position_mask = (std::uint64_t(1) << position_bits) - 1;
   face_order.resize(nf);
   parallel_for_blocks(nf, [&](std::size_t first, std::size_t last) {
     for(std::size_t p = first; p < last; ++p)
       face_order[p] = static_cast<Index>(keys[p] & position_mask);
   });
-  std::vector<std::uint64_t>().swap(keys);
+  Uninitialized_vector<std::uint64_t>().swap(keys);
   // first use (sequential: the numbers follow the order of the faces)
   std::vector<Index> number(n, invalid_index);
   vertex_order.reserve(n);
