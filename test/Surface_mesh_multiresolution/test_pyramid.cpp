@@ -2027,6 +2027,30 @@ TEST_CASE("the look-ahead greedy selection and its parallel rounds take the coll
       SMR::internal::Index_array source_of_target;
       std::vector<SMR::internal::Collapse> accepted;
       SMR::internal::select_collapses(th, xyz.data(), cost, budget, on_border, locked, source_of_target, accepted, window);
+      if(window == SMR::internal::sequential_selection)
+      {
+        // the loop reads the candidates' ends, so the caller may free the halfedges' sources and
+        // targets before it (decompose() does): the same collapses
+        SMR::internal::Triangle_halfedges copy = th;
+        std::vector<unsigned char> on_border2, locked2;
+        SMR::internal::Index_array source_of_target2;
+        std::vector<SMR::internal::Collapse> accepted2;
+        bool freed = false;
+        SMR::internal::select_collapses(copy, xyz.data(), cost, budget, on_border2, locked2, source_of_target2, accepted2, window,
+                                        [&](const auto& take, bool ends_free) {
+                                          if(ends_free)
+                                          {
+                                            SMR::internal::Index_array().swap(copy.source);
+                                            SMR::internal::Index_array().swap(copy.target);
+                                            freed = true;
+                                          }
+                                          take();
+                                        }, &in.im.triangles);
+        CHECK(freed);
+        REQUIRE(accepted2.size() == accepted.size());
+        for(std::size_t i = 0; i < accepted.size(); ++i)
+          CHECK((accepted2[i].o == accepted[i].o && accepted2[i].e == accepted[i].e));
+      }
       // the reference: the th.n cheapest admissible halfedges in (cost, halfedge) order (half as
       // many again each time fewer than th.n / 16 + 1 are taken), taken when the source is in no
       // taken source's closed 1-ring, the target is no taken target, no taken o' -> e' has e
@@ -2097,9 +2121,18 @@ TEST_CASE("the greedy loop takes the same collapses from the candidates' ends as
     // the rest of the candidates (which the ends version converts too)
     for(const std::size_t wanted : {std::size_t(th.n), std::size_t(th.n / 8)})
     {
-      std::vector<SMR::internal::Collapse> taken[2];
-      for(const bool as_ends : {false, true})
+      // 0: keys; 1: ends; 2: ends, the halfedges' sources and targets freed before the loop
+      // (as decompose() frees them): every end, the rest's included, read from the face array
+      SMR::internal::Triangle_halfedges freed = th;
+      SMR::internal::Index_array().swap(freed.source);
+      SMR::internal::Index_array().swap(freed.target);
+      REQUIRE(freed.number_of_halfedges() == th.source.size());
+      std::vector<SMR::internal::Collapse> taken[3];
+      for(const int variant : {0, 1, 2})
       {
+        const bool as_ends = variant > 0;
+        const SMR::internal::Triangle_halfedges& t = variant == 2 ? freed : th;
+        const std::vector<Index>* faces = variant == 2 ? &in.im.triangles : nullptr;
         std::vector<unsigned char> on_border;
         SMR::internal::Candidate_key key(0);
         std::size_t all = 0, rests = 0;
@@ -2108,36 +2141,46 @@ TEST_CASE("the greedy loop takes the same collapses from the candidates' ends as
         const std::size_t sorted = candidates.size();
         if(as_ends)
         {
-          SMR::internal::candidate_ends(th, key, candidates, 0);
-          for(std::size_t i = 0; i < sorted; ++i)        // every candidate an edge of the mesh
+          const SMR::internal::Key_array keys = candidates;
+          SMR::internal::candidate_ends(t, key, candidates, 0, faces);
+          for(std::size_t i = 0; i < sorted; ++i)        // the ends of every candidate's halfedge
           {
             const Index o = SMR::internal::source_of_ends(candidates[i]), e = SMR::internal::target_of_ends(candidates[i]);
-            bool edge = false;
-            for(Index k = th.out_offsets[o]; k < th.out_offsets[o + 1]; ++k)
-              edge = edge || th.out_target[k] == e;
-            REQUIRE(edge);
+            REQUIRE(o == th.source[key.halfedge(keys[i])]);
+            REQUIRE(e == th.target[key.halfedge(keys[i])]);
           }
         }
         auto sort_rest = [&] {
           const std::size_t first = candidates.size();
-          SMR::internal::sort_candidate_rest(th, cost, on_border, key, limit, candidates);
+          SMR::internal::sort_candidate_rest(t, cost, on_border, key, limit, candidates);
           if(as_ends)
-            SMR::internal::candidate_ends(th, key, candidates, first);
+          {
+            const SMR::internal::Key_array keys(candidates.begin() + std::ptrdiff_t(first), candidates.end());
+            SMR::internal::candidate_ends(t, key, candidates, first, faces);
+            for(std::size_t i = first; i < candidates.size(); ++i)
+            {
+              REQUIRE(SMR::internal::source_of_ends(candidates[i]) == th.source[key.halfedge(keys[i - first])]);
+              REQUIRE(SMR::internal::target_of_ends(candidates[i]) == th.target[key.halfedge(keys[i - first])]);
+            }
+          }
           ++rests;
         };
         std::vector<unsigned char> locked(th.n, 0);
         SMR::internal::Index_array source_of_target(th.n);
-        SMR::internal::take_greedily(th, in.xyz.data(), candidates, sorted, all, sort_rest, key, std::size_t(-1), on_border,
-                                     locked, source_of_target, taken[as_ends], wanted,
+        SMR::internal::take_greedily(t, in.xyz.data(), candidates, sorted, all, sort_rest, key, std::size_t(-1), on_border,
+                                     locked, source_of_target, taken[variant], wanted,
                                      wanted == th.n ? th.n / 16 + 1 : th.n, as_ends);
         CHECK(rests == (wanted < th.n ? 1u : 0u));
       }
       REQUIRE(taken[0].size() > th.n / 16);
-      REQUIRE(taken[0].size() == taken[1].size());
-      for(std::size_t i = 0; i < taken[0].size(); ++i)
+      for(const int variant : {1, 2})
       {
-        CHECK(taken[0][i].o == taken[1][i].o);
-        CHECK(taken[0][i].e == taken[1][i].e);
+        REQUIRE(taken[0].size() == taken[variant].size());
+        for(std::size_t i = 0; i < taken[0].size(); ++i)
+        {
+          CHECK(taken[0][i].o == taken[variant][i].o);
+          CHECK(taken[0][i].e == taken[variant][i].e);
+        }
       }
     }
   }

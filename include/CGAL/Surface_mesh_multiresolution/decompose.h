@@ -158,7 +158,9 @@ private:
       // once the candidates are sorted (in the memory their keys freed: allocated before them,
       // the levels' page faults doubled)
       select_collapses(th, xyz().data(), Cost_of_rows<CostModel>{m_cost}, budget, m_on_border, m_locked,
-                       m_source_of_target, m_accepted, 0, [&](const auto& take) {
+                       m_source_of_target, m_accepted, 0, [&](const auto& take, bool ends_free) {
+                         if(ends_free)
+                           m_builder.free_halfedge_ends();
                          m_builder.allocate_paired_rows(m_scheme);
                          allocate_predictions();
                          run_beside(take, [&] {
@@ -166,12 +168,16 @@ private:
                            predict();
                          });
                          m_builder.release_weight_data();
-                       });
+                       }, &m_faces);
       m_predicted = true;
     }
     else
       select_collapses(th, xyz().data(), Cost_of_rows<CostModel>{m_cost}, budget, m_on_border, m_locked,
-                       m_source_of_target, m_accepted);
+                       m_source_of_target, m_accepted, 0, [&](const auto& take, bool ends_free) {
+                         if(ends_free && m_scheme != Relaxation_scheme::SECOND_ORDER_DIFFERENCE)   // (SOD's hinges read them)
+                           m_builder.free_halfedge_ends();
+                         take();
+                       }, &m_faces);
     // in increasing o (the sources are distinct): an ordered compaction of the rows, not a sort
     m_target_of.assign(rows(), invalid_index);
     for(const Collapse& c : m_accepted)

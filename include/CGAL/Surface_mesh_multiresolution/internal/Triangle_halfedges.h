@@ -135,6 +135,13 @@ private:
 
 public:
 
+  // the number of halfedges, face and border ones (from the twins: source and target may be
+  // freed first, see select_collapses())
+  std::size_t number_of_halfedges() const
+  {
+    CGAL_assertion(source.empty() || source.size() == twin.size());
+    return twin.size();
+  }
   static Index next_in_face(Index h) { return h % 3 == 2 ? h - 2 : h + 1; }
   static Index prev_in_face(Index h) { return h % 3 == 0 ? h + 2 : h - 1; }
   bool has_face(Index h) const { return h < 3 * nf; }

@@ -278,15 +278,21 @@ inline Index target_of_ends(std::uint64_t ends) { return static_cast<Index>(ends
 // those loads were most of its time on large meshes, where it is the decomposition's largest
 // sequential part. Here they are independent loads in parallel blocks, and the loop streams
 // the ends. Only for halfedge structures without a repeated directed edge, where the ends name
-// the halfedge (take_greedily() finds it in the source's ring).
-inline void candidate_ends(const Triangle_halfedges& th, const Candidate_key& key, Key_array& candidates, std::size_t first)
+// the halfedge (take_greedily() finds it in the source's ring). The ends are read from
+// th.source and th.target, or, where those were freed (select_collapses()), from the face
+// array `faces` th was built from and the twins (Triangle_halfedges::source_in()).
+inline void candidate_ends(const Triangle_halfedges& th, const Candidate_key& key, Key_array& candidates, std::size_t first,
+                           const std::vector<Index>* faces = nullptr)
 {
   CGAL_precondition(!th.repeated_directed_edge);
+  const bool listed = !th.source.empty();
+  CGAL_precondition(listed || faces != nullptr);
   parallel_for_blocks(candidates.size() - first, [&](std::size_t b, std::size_t e) {
     for(std::size_t i = first + b; i < first + e; ++i)
     {
       const Index h = key.halfedge(candidates[i]);
-      candidates[i] = ends_of_candidate(th.source[h], th.target[h]);
+      candidates[i] = listed ? ends_of_candidate(th.source[h], th.target[h])
+                             : ends_of_candidate(th.source_in(*faces, h), th.target_in(*faces, h));
     }
   });
 }
@@ -832,7 +838,7 @@ Key_array candidate_keys(const Triangle_halfedges& th, const CostOfRows& cost,
                          const std::vector<unsigned char>& on_border, const Candidate_key& key,
                          std::uint32_t* low_bits = nullptr)
 {
-  Key_array candidates(th.source.size());
+  Key_array candidates(th.number_of_halfedges());
   parallel_for_blocks(th.n, [&](std::size_t first, std::size_t last) {
     const Index end = th.out_offsets[last];
     for(std::size_t o = first; o < last; ++o)
@@ -924,7 +930,7 @@ template <typename CostOfRows>
 void sort_candidate_rest(const Triangle_halfedges& th, const CostOfRows& cost, const std::vector<unsigned char>& on_border,
                          const Candidate_key& key, std::uint64_t limit, Key_array& candidates)
 {
-  Low_bits low(th.source.size());
+  Low_bits low(th.number_of_halfedges());
   Key_array rest = candidate_keys(th, cost, on_border, key, low.data());
   keys_above(rest, key, refused_candidate, limit, &low);
   sort_front(rest, low, key);
@@ -943,20 +949,24 @@ void sort_candidate_rest(const Triangle_halfedges& th, const CostOfRows& cost, c
 // threads and parallel rounds (take_greedily_in_rounds(), windows of the level's n / 64
 // candidates, at least 4096) from four on; `sequential_selection` forces the loop, any other
 // value the rounds with windows of that many candidates. The accepted collapses are the same.
-// `run_taking(take)` calls take(), the loop or the rounds once the candidates are sorted: a
-// caller may run other work beside it (the loop is sequential); Run_in_place just calls it.
+// `run_taking(take, ends_free)` calls take(), the loop or the rounds once the candidates are
+// sorted: a caller may run other work beside it (the loop is sequential); Run_in_place just
+// calls it. `ends_free`: the taking reads neither th.source nor th.target, which the caller may
+// then free first (the loop on the candidates' ends, given the face array th was built from
+// as `faces`, where the rest of the candidates would find their ends).
 constexpr std::size_t sequential_selection = ~std::size_t(0);
 
 struct Run_in_place
 {
   template <typename Take>
-  void operator()(const Take& take) const { take(); }
+  void operator()(const Take& take, bool /* ends_free */ = false) const { take(); }
 };
 
 template <typename CostOfRows, typename RunTaking = Run_in_place>
 void select_collapses(const Triangle_halfedges& th, const double* xyz, const CostOfRows& cost, std::size_t budget,
                       std::vector<unsigned char>& on_border, std::vector<unsigned char>& locked, Index_array& source_of_target,
-                      std::vector<Collapse>& accepted, std::size_t window = 0, const RunTaking& run_taking = RunTaking())
+                      std::vector<Collapse>& accepted, std::size_t window = 0, const RunTaking& run_taking = RunTaking(),
+                      const std::vector<Index>* faces = nullptr)
 {
   if(source_of_target.size() < th.n)
     source_of_target.resize(th.n);                        // the first level's size: the next levels reuse it
@@ -987,8 +997,11 @@ void select_collapses(const Triangle_halfedges& th, const double* xyz, const Cos
     const std::size_t first = candidates.size();
     sort_candidate_rest(th, cost, on_border, key, limit, candidates);
     if(as_ends)
-      candidate_ends(th, key, candidates, first);
+      candidate_ends(th, key, candidates, first, faces);
   };
+  // the loop on ends reads neither th.source nor th.target (the rest of the candidates, if
+  // ever sorted, take their ends from `faces`): run_taking may free them
+  const bool ends_free = as_ends && faces != nullptr;
   run_taking([&] {
     if(window == sequential_selection)
       take_greedily(th, xyz, candidates, sorted, all, sort_rest, key, budget, on_border, locked, source_of_target, accepted,
@@ -996,7 +1009,7 @@ void select_collapses(const Triangle_halfedges& th, const double* xyz, const Cos
     else
       take_greedily_in_rounds(th, xyz, candidates, sorted, all, sort_rest, key, budget, on_border, source_of_target, accepted,
                               th.n, th.n / 16 + 1, window);
-  });
+  }, ends_free);
 }
 
 } // namespace internal
