@@ -2027,26 +2027,20 @@ TEST_CASE("the look-ahead greedy selection and its parallel rounds take the coll
       SMR::internal::Index_array source_of_target;
       std::vector<SMR::internal::Collapse> accepted;
       SMR::internal::select_collapses(th, xyz.data(), cost, budget, on_border, locked, source_of_target, accepted, window);
-      if(window == SMR::internal::sequential_selection)
       {
-        // the loop reads the candidates' ends, so the caller may free the halfedges' sources and
-        // targets before it (decompose() does): the same collapses
-        SMR::internal::Triangle_halfedges copy = th;
+        // halfedges without their ends listed (decompose()'s), the ends read from the faces:
+        // the same collapses
+        SMR::internal::Triangle_halfedges bare;
+        bare.build(in.im.number_of_vertices(), in.im.triangles, true, false);
+        REQUIRE(!bare.has_ends());
+        REQUIRE(bare.number_of_halfedges() == th.source.size());
+        REQUIRE((bare.twin == th.twin && bare.out == th.out && bare.out_target == th.out_target && bare.out_apex == th.out_apex));
         std::vector<unsigned char> on_border2, locked2;
         SMR::internal::Index_array source_of_target2;
         std::vector<SMR::internal::Collapse> accepted2;
-        bool freed = false;
-        SMR::internal::select_collapses(copy, xyz.data(), cost, budget, on_border2, locked2, source_of_target2, accepted2, window,
-                                        [&](const auto& take, bool ends_free) {
-                                          if(ends_free)
-                                          {
-                                            SMR::internal::Index_array().swap(copy.source);
-                                            SMR::internal::Index_array().swap(copy.target);
-                                            freed = true;
-                                          }
-                                          take();
-                                        }, &in.im.triangles);
-        CHECK(freed);
+        SMR::internal::select_collapses(bare, xyz.data(), cost, budget, on_border2, locked2, source_of_target2, accepted2, window,
+                                        SMR::internal::Run_in_place(), &in.im.triangles);
+        CHECK(on_border2 == on_border);
         REQUIRE(accepted2.size() == accepted.size());
         for(std::size_t i = 0; i < accepted.size(); ++i)
           CHECK((accepted2[i].o == accepted[i].o && accepted2[i].e == accepted[i].e));
@@ -2121,11 +2115,10 @@ TEST_CASE("the greedy loop takes the same collapses from the candidates' ends as
     // the rest of the candidates (which the ends version converts too)
     for(const std::size_t wanted : {std::size_t(th.n), std::size_t(th.n / 8)})
     {
-      // 0: keys; 1: ends; 2: ends, the halfedges' sources and targets freed before the loop
-      // (as decompose() frees them): every end, the rest's included, read from the face array
-      SMR::internal::Triangle_halfedges freed = th;
-      SMR::internal::Index_array().swap(freed.source);
-      SMR::internal::Index_array().swap(freed.target);
+      // 0: keys; 1: ends; 2: ends, the halfedges built without their ends (as decompose()
+      // builds them): every end, the rest's included, read from the face array
+      SMR::internal::Triangle_halfedges freed;
+      freed.build(in.im.number_of_vertices(), in.im.triangles, true, false);
       REQUIRE(freed.number_of_halfedges() == th.source.size());
       std::vector<SMR::internal::Collapse> taken[3];
       for(const int variant : {0, 1, 2})
@@ -2137,7 +2130,7 @@ TEST_CASE("the greedy loop takes the same collapses from the candidates' ends as
         SMR::internal::Candidate_key key(0);
         std::size_t all = 0, rests = 0;
         std::uint64_t limit = 0;
-        SMR::internal::Key_array candidates = SMR::internal::sorted_candidates(th, cost, on_border, key, wanted, all, limit);
+        SMR::internal::Key_array candidates = SMR::internal::sorted_candidates(t, cost, on_border, key, wanted, all, limit, faces);
         const std::size_t sorted = candidates.size();
         if(as_ends)
         {

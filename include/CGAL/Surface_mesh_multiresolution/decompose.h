@@ -137,13 +137,21 @@ private:
     // halfedges of the level before and its collapses
     if(k == 0)
     {
-      m_builder.set_connectivity(rows(), m_faces, true);
-      m_cost.initialize(m_builder.connectivity(), xyz());   // on M_0, rows are the input's vertex numbers
+      m_builder.set_connectivity(rows(), m_faces, true, halfedge_ends());
+      m_cost.initialize(m_builder.connectivity(), m_faces, xyz());   // on M_0, rows are the input's vertex numbers
     }
     else
-      m_builder.set_connectivity_after_collapses(rows(), m_faces, std::move(m_halfedges_before), std::move(m_collapsed));
+      m_builder.set_connectivity_after_collapses(rows(), m_faces, std::move(m_halfedges_before), std::move(m_collapsed),
+                                                 halfedge_ends());
     m_cost.begin_level(m_rows_to_vertices, xyz());
   }
+
+  // Whether the halfedges list their sources and targets (Triangle_halfedges::build()): the
+  // selection and the 1-ring weights read a halfedge's ends from the face array and the twins
+  // (select_collapses() is given the faces), SOD's hinges from these lists. Without them the
+  // halfedges take 16 bytes per face less, at the peak of a level (level 0, or the weights'
+  // arrays beside the greedy loop): the 3.1M-vertex horse's peak 1706 -> MMMM MB.
+  bool halfedge_ends() const { return m_scheme == Relaxation_scheme::SECOND_ORDER_DIFFERENCE; }
 
   void select(std::size_t budget, std::size_t k)
   {
@@ -158,9 +166,7 @@ private:
       // once the candidates are sorted (in the memory their keys freed: allocated before them,
       // the levels' page faults doubled)
       select_collapses(th, xyz().data(), Cost_of_rows<CostModel>{m_cost}, budget, m_on_border, m_locked,
-                       m_source_of_target, m_accepted, 0, [&](const auto& take, bool ends_free) {
-                         if(ends_free)
-                           m_builder.free_halfedge_ends();
+                       m_source_of_target, m_accepted, 0, [&](const auto& take) {
                          m_builder.allocate_paired_rows(m_scheme);
                          allocate_predictions();
                          run_beside(take, [&] {
@@ -173,11 +179,7 @@ private:
     }
     else
       select_collapses(th, xyz().data(), Cost_of_rows<CostModel>{m_cost}, budget, m_on_border, m_locked,
-                       m_source_of_target, m_accepted, 0, [&](const auto& take, bool ends_free) {
-                         if(ends_free && m_scheme != Relaxation_scheme::SECOND_ORDER_DIFFERENCE)   // (SOD's hinges read them)
-                           m_builder.free_halfedge_ends();
-                         take();
-                       }, &m_faces);
+                       m_source_of_target, m_accepted, 0, Run_in_place(), &m_faces);
     // in increasing o (the sources are distinct): an ordered compaction of the rows, not a sort
     m_target_of.assign(rows(), invalid_index);
     for(const Collapse& c : m_accepted)

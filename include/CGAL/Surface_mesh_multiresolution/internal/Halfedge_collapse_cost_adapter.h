@@ -157,7 +157,7 @@ public:
     m_adapter = std::make_unique<Adapter>(m_work, m_wpm, gt, m_holder->policy);
   }
 
-  void initialize(const Triangle_halfedges&, const std::vector<double>&) {}
+  void initialize(const Triangle_halfedges&, const std::vector<Index>&, const std::vector<double>&) {}
   void begin_level(const std::vector<Index>& rows_to_vertices, const std::vector<double>&) { m_rows = &rows_to_vertices; }
   void end_level(const std::vector<Index>&) {}   // the working copy collapsed as it went
 

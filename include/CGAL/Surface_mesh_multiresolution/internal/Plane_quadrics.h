@@ -46,7 +46,23 @@ public:
   static constexpr double discontinuity_multiplier = 100.;   // CGAL's default
 
   // th: the connectivity of the input (rows = vertex numbers), xyz: 3 doubles per vertex
+  // th: the halfedges of the face array `tri` (their ends need not be listed: see
+  // Triangle_halfedges::build())
+  void initialize(const Triangle_halfedges& th, const std::vector<Index>& tri, const std::vector<double>& xyz)
+  {
+    initialize_with(th, [&tri](Index h) { return tri[h]; }, xyz);
+  }
+  // th with its ends listed
   void initialize(const Triangle_halfedges& th, const std::vector<double>& xyz)
+  {
+    CGAL_precondition(th.has_ends());
+    initialize_with(th, [&th](Index h) { return th.source[h]; }, xyz);
+  }
+
+private:
+  // source_of(h): the source of face halfedge h (the vertex at its corner of the face array)
+  template <typename SourceOf>
+  void initialize_with(const Triangle_halfedges& th, const SourceOf& source_of, const std::vector<double>& xyz)
   {
     m_xyz = xyz.data();
     // The plane (n, -n.p) of every face first, once per face (in parallel): each of a face's
@@ -55,7 +71,7 @@ public:
     Uninitialized_vector<double> planes(4 * th.nf);
     parallel_for_blocks(th.nf, [&](std::size_t first, std::size_t last) {
       for(std::size_t f = first; f < last; ++f)
-        plane_of_face(th, static_cast<Index>(3 * f), planes.data() + 4 * f);
+        plane_of_face(source_of, static_cast<Index>(3 * f), planes.data() + 4 * f);
     });
     m_q.resize(size * th.n);                           // each row written whole by its own task below
     // Each vertex adds the quadrics of its faces and of the border edges at it in the order
@@ -78,12 +94,12 @@ public:
           const bool border_out = !th.has_face(th.twin[h]), border_into = !th.has_face(th.twin[into]);
           outer(planes.data() + 4 * std::size_t(h / 3), face_quadric);
           if(h % 3 != 0 && border_into)                    // the face loop meets `into` before h
-            add(sum, plane_of_border_edge(th, into, edge_quadric), discontinuity_multiplier);
+            add(sum, plane_of_border_edge(source_of, into, edge_quadric), discontinuity_multiplier);
           add(sum, face_quadric, 1.);
           if(border_out)
-            add(sum, plane_of_border_edge(th, h, edge_quadric), discontinuity_multiplier);
+            add(sum, plane_of_border_edge(source_of, h, edge_quadric), discontinuity_multiplier);
           if(h % 3 == 0 && border_into)                    // ... or after it (h is the face's first halfedge)
-            add(sum, plane_of_border_edge(th, into, edge_quadric), discontinuity_multiplier);
+            add(sum, plane_of_border_edge(source_of, into, edge_quadric), discontinuity_multiplier);
         }
         copy_values(sum, size, m_q.data() + size * v);
       }
@@ -91,6 +107,7 @@ public:
     evaluate_own_errors();
   }
 
+public:
   // A new level: xyz holds the positions of its rows (the quadrics follow them, see retain()).
   void begin_level(const std::vector<double>& xyz)
   {
@@ -213,12 +230,14 @@ private:
   }
 
   // the plane (n, -n.p) of the face whose first halfedge is h0 (n: its unit normal); CGAL
-  // takes p = target(h), q = target(next(h)), r = source(h) of the face's halfedge
-  void plane_of_face(const Triangle_halfedges& th, Index h0, double* plane) const
+  // takes p = target(h), q = target(next(h)), r = source(h) of the face's halfedge (the
+  // target of a face halfedge is the source of the next: source_of() as in initialize_with())
+  template <typename SourceOf>
+  void plane_of_face(const SourceOf& source_of, Index h0, double* plane) const
   {
-    const double* p = point(th.target[h0]);
-    const double* q = point(th.target[h0 + 1]);
-    const double* r = point(th.source[h0]);
+    const double* p = point(source_of(h0 + 1));
+    const double* q = point(source_of(h0 + 2));
+    const double* r = point(source_of(h0));
     cross_of_differences(q, r, p, plane);
     normalize(plane);
     set_offset(plane, p);
@@ -226,11 +245,13 @@ private:
 
   // the quadric of the plane through the border edge source(h) -> target(h) (a face halfedge
   // without a face across), perpendicular to its face
-  const double* plane_of_border_edge(const Triangle_halfedges& th, Index h, double* out) const
+  template <typename SourceOf>
+  const double* plane_of_border_edge(const SourceOf& source_of, Index h, double* out) const
   {
-    const double* ep = point(th.target[h]);
-    const double* eq = point(th.target[Triangle_halfedges::next_in_face(h)]);
-    const double* er = point(th.source[h]);
+    const Index next = Triangle_halfedges::next_in_face(h);
+    const double* ep = point(source_of(next));
+    const double* eq = point(source_of(Triangle_halfedges::next_in_face(next)));
+    const double* er = point(source_of(h));
     double fn[3], edge[3], en[4];
     cross_of_differences(eq, er, ep, fn);
     for(int c = 0; c < 3; ++c) edge[c] = ep[c] - er[c];

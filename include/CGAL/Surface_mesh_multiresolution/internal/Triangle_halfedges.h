@@ -118,7 +118,7 @@ struct Collapsed_faces
 struct Triangle_halfedges
 {
   std::size_t n = 0, nf = 0;
-  Index_array source, target, twin;            // per halfedge
+  Index_array source, target, twin;            // per halfedge (source and target: only when built with_ends, see build())
   // outgoing halfedges of each vertex (face halfedges, then border ones): out[k] for
   // out_offsets[v] <= k < out_offsets[v + 1], with their targets and the third vertex of their
   // face (invalid_index for a border halfedge; only when built `with_apexes`), so that a
@@ -142,6 +142,8 @@ public:
     CGAL_assertion(source.empty() || source.size() == twin.size());
     return twin.size();
   }
+  // whether source and target are listed (build()'s `with_ends`)
+  bool has_ends() const { return source.size() == twin.size(); }
   static Index next_in_face(Index h) { return h % 3 == 2 ? h - 2 : h + 1; }
   static Index prev_in_face(Index h) { return h % 3 == 0 ? h + 2 : h - 1; }
   bool has_face(Index h) const { return h < 3 * nf; }
@@ -153,9 +155,12 @@ public:
   Index source_in(const std::vector<Index>& tri, Index h) const { return has_face(h) ? tri[h] : tri[next_in_face(twin[h])]; }
   Index target_in(const std::vector<Index>& tri, Index h) const { return has_face(h) ? tri[next_in_face(h)] : tri[twin[h]]; }
 
-  // tri: 3 vertex numbers (< nv) per face.
+  // tri: 3 vertex numbers (< nv) per face. Without `with_ends`, source and target stay empty
+  // (16 bytes per face less: the decomposition reads the ends of a halfedge from its face array
+  // and the twins, source_in() and target_in()), unless a directed edge repeats (the greedy loop
+  // then reads halfedges, not ends: take_greedily()).
   // \throws std::invalid_argument when the halfedges (up to 6 per face) cannot be numbered by Index
-  void build(std::size_t nv, const std::vector<Index>& tri, bool with_apexes = false)
+  void build(std::size_t nv, const std::vector<Index>& tri, bool with_apexes = false, bool with_ends = true)
   {
     // room for border halfedges beside the face halfedges, so that add_border_halfedges()
     // widens the rows in place
@@ -165,7 +170,7 @@ public:
     if(with_apexes)
       out_apex.reserve(room);
     pair_face_halfedges(nv, tri, with_apexes);
-    add_source_target_and_borders(tri, with_apexes);
+    add_source_target_and_borders(tri, with_apexes, with_ends || repeated_directed_edge);
   }
 
   // The halfedges of the face array `tri` of nv rows that one level of half-edge collapses
@@ -191,14 +196,14 @@ public:
   // another across its third edge); returns true otherwise.
   // \throws std::invalid_argument as build()
   bool build_after_collapses(Triangle_halfedges&& before, Collapsed_faces&& c, std::size_t nv,
-                             const std::vector<Index>& tri, bool with_apexes = false)
+                             const std::vector<Index>& tri, bool with_apexes = false, bool with_ends = true)
   {
     const std::size_t nf_before = before.nf;
     if(before.repeated_directed_edge || before.twin.size() < 3 * nf_before)
     {
       before = Triangle_halfedges();
       c = Collapsed_faces();
-      build(nv, tri, with_apexes);
+      build(nv, tri, with_apexes, with_ends);
       return false;
     }
     const std::size_t room = halfedges_with_border_room(tri.size());
@@ -260,7 +265,7 @@ public:
     c = Collapsed_faces();
     if(failed.load())
     {
-      build(nv, tri, with_apexes);
+      build(nv, tri, with_apexes, with_ends);
       return false;
     }
     repeated_directed_edge = false;
@@ -278,12 +283,15 @@ public:
     }
     list_face_halfedges_by_source(n, tri, with_apexes, out_offsets, out, out_target, out_apex,
                                   border_twins.empty() ? nullptr : &slot);
-    set_ends(tri, border_twins.size());
+    if(with_ends)
+      set_ends(tri, border_twins.size());
+    else
+      clear_ends();
     if(!border_twins.empty())
     {
       for(std::size_t v = 0; v < n; ++v)
         slot[v] = out_offsets[v + 1] - slot[v];
-      write_border_halfedges(border_twins, slot, with_apexes);
+      write_border_halfedges(tri, border_twins, slot, with_apexes);
     }
     return true;
   }
@@ -333,12 +341,15 @@ private:
 
   // The end of build(), once the face halfedges are listed and paired: the border halfedges
   // numbered, the ends of every halfedge, the border rows.
-  void add_source_target_and_borders(const std::vector<Index>& tri, bool with_apexes)
+  void add_source_target_and_borders(const std::vector<Index>& tri, bool with_apexes, bool with_ends = true)
   {
     const Index_array border_twins = face_halfedges_without_twin();
-    set_ends(tri, border_twins.size());
+    if(with_ends)
+      set_ends(tri, border_twins.size());
+    else
+      clear_ends();
     if(!border_twins.empty())                        // closed mesh: the rows are the face halfedges
-      add_border_halfedges(border_twins, with_apexes);
+      add_border_halfedges(tri, border_twins, with_apexes);
     m_sorted_first = std::vector<Index>();
     m_sorted = std::vector<std::pair<Index, Index> >();
   }
@@ -354,6 +365,12 @@ private:
         border_twins[rank] = static_cast<Index>(h);
     });
     return border_twins;
+  }
+
+  void clear_ends()
+  {
+    for(Index_array* v : {&source, &target})
+      Index_array().swap(*v);
   }
 
   // source and target of the face halfedges; the arrays sized for `border_halfedges` more
@@ -377,21 +394,28 @@ private:
   }
 
   // The border halfedges (twins of `border_twins`, in order) numbered after the face
-  // halfedges, each listed in its source's row at slot[source], which it advances.
-  void write_border_halfedges(const Index_array& border_twins, std::vector<Index>& slot, bool with_apexes)
+  // halfedges, each listed in its source's row at slot[source], which it advances; their ends
+  // written where the arrays of ends are kept (set_ends())
+  void write_border_halfedges(const std::vector<Index>& tri, const Index_array& border_twins, std::vector<Index>& slot,
+                              bool with_apexes)
   {
     const Index h0 = static_cast<Index>(3 * nf);
     twin.resize(h0 + border_twins.size());
+    const bool ends = !source.empty();
     Index g = h0;
     for(Index h : border_twins)
     {
-      source[g] = target[h];
-      target[g] = source[h];
+      const Index from = tri[next_in_face(h)], to = tri[h];   // g runs against the face halfedge h
+      if(ends)
+      {
+        source[g] = from;
+        target[g] = to;
+      }
       twin[g] = h;
       twin[h] = g;
-      const Index k = slot[source[g]]++;
+      const Index k = slot[from]++;
       out[k] = g;
-      out_target[k] = target[g];
+      out_target[k] = to;
       if(with_apexes)
         out_apex[k] = invalid_index;                 // no face
       ++g;
@@ -566,13 +590,13 @@ private:
 
   // border halfedges, numbered after the face halfedges: each vertex's row gets them at its end
   // (border_twins: the face halfedges without a twin, in increasing order)
-  void add_border_halfedges(const Index_array& border_twins, bool with_apexes)
+  void add_border_halfedges(const std::vector<Index>& tri, const Index_array& border_twins, bool with_apexes)
   {
     const Index h0 = static_cast<Index>(3 * nf);
     const std::size_t nh = h0 + border_twins.size();
     std::vector<Index> extra(n + 1, 0);
     for(Index h : border_twins)
-      ++extra[target[h] + 1];                        // target(h) needs a border halfedge towards source(h)
+      ++extra[tri[next_in_face(h)] + 1];             // target(h) needs a border halfedge towards source(h)
     std::vector<Index> face_off;
     face_off.swap(out_offsets);
     out_offsets.assign(n + 1, 0);
@@ -608,7 +632,7 @@ private:
     std::vector<Index> fill(n);
     for(std::size_t i = 0; i < n; ++i)
       fill[i] = out_offsets[i] + (face_off[i + 1] - face_off[i]);
-    write_border_halfedges(border_twins, fill, with_apexes);
+    write_border_halfedges(tri, border_twins, fill, with_apexes);
   }
 };
 

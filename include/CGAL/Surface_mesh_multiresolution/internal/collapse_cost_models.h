@@ -28,7 +28,8 @@ namespace internal {
 // the interface the decomposition drives, in the rows of the current level M_k:
 //
 //   Model(tm, vpm, vim, indexed_mesh, gt, user_get_cost)   once, on the input
-//   initialize(halfedges_of_M0, xyz_of_M0)                  once, on M_0 (rows = input numbers)
+//   initialize(halfedges_of_M0, faces_of_M0, xyz_of_M0)     once, on M_0 (rows = input numbers;
+//                                                          the halfedges' ends need not be listed)
 //   begin_level(rows_to_vertices, xyz)                      per level: input number and
 //                                                           position of every row of M_k
 //   cost(o, e)                                              Optional<double>: the cost of

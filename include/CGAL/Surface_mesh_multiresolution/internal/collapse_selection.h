@@ -285,7 +285,7 @@ inline void candidate_ends(const Triangle_halfedges& th, const Candidate_key& ke
                            const std::vector<Index>* faces = nullptr)
 {
   CGAL_precondition(!th.repeated_directed_edge);
-  const bool listed = !th.source.empty();
+  const bool listed = th.has_ends();
   CGAL_precondition(listed || faces != nullptr);
   parallel_for_blocks(candidates.size() - first, [&](std::size_t b, std::size_t e) {
     for(std::size_t i = first + b; i < first + e; ++i)
@@ -309,6 +309,7 @@ void take_greedily(const Triangle_halfedges& th, const double* xyz, const Key_ar
                    Index_array& source_of_target, std::vector<Collapse>& accepted, std::size_t considered, std::size_t minimum,
                    bool as_ends = false)
 {
+  CGAL_precondition(as_ends || th.has_ends());            // by halfedge: their ends are listed
   // The candidates come in cost order, that is at random places of the level's arrays: on a
   // mesh larger than the cache each test waits for a dozen misses. Why by hand: the loop keeps
   // a window of the next candidates whose ends were free when first seen and prefetches, in
@@ -443,8 +444,10 @@ template <typename SortRest>
 void take_greedily_in_rounds(const Triangle_halfedges& th, const double* xyz, const Key_array& candidates,
                              std::size_t sorted, std::size_t all, const SortRest& sort_rest, const Candidate_key& key, std::size_t budget,
                              const std::vector<unsigned char>& on_border, Index_array& source_of_target,
-                             std::vector<Collapse>& accepted, std::size_t considered, std::size_t minimum, std::size_t window)
+                             std::vector<Collapse>& accepted, std::size_t considered, std::size_t minimum, std::size_t window,
+                             const std::vector<Index>* faces = nullptr)
 {
+  CGAL_precondition(th.has_ends() || faces != nullptr);   // the ends of a halfedge: listed, or from the faces
   constexpr Index none = invalid_index;
   constexpr std::size_t grain = 512;
   std::unique_ptr<std::atomic<Index>[]> lock(new std::atomic<Index>[th.n]), reserve(new std::atomic<Index>[th.n]),
@@ -500,7 +503,8 @@ void take_greedily_in_rounds(const Triangle_halfedges& th, const double* xyz, co
       for(std::size_t i = first; i < last; ++i)
       {
         const Index h = key.halfedge(candidates[scan + i]);
-        pending[i] = Pending{static_cast<Index>(scan + i), h, th.source[h], th.target[h]};
+        pending[i] = th.has_ends() ? Pending{static_cast<Index>(scan + i), h, th.source[h], th.target[h]}
+                                   : Pending{static_cast<Index>(scan + i), h, th.source_in(*faces, h), th.target_in(*faces, h)};
       }
     }, grain);
     scan += count;
@@ -902,12 +906,19 @@ inline void sort_front(Key_array& c, const Low_bits& low, const Candidate_key& k
 template <typename CostOfRows>
 Key_array sorted_candidates(const Triangle_halfedges& th, const CostOfRows& cost,
                             std::vector<unsigned char>& on_border, Candidate_key& key,
-                            std::size_t wanted, std::size_t& total, std::uint64_t& limit)
+                            std::size_t wanted, std::size_t& total, std::uint64_t& limit,
+                            const std::vector<Index>* faces = nullptr)
 {
-  const Index nh = static_cast<Index>(th.source.size());
+  CGAL_precondition(th.has_ends() || faces != nullptr);   // the ends of a halfedge: listed, or from the faces
+  const Index nh = static_cast<Index>(th.number_of_halfedges());
   on_border.assign(th.n, 0);
   for(Index h = static_cast<Index>(3 * th.nf); h < nh; ++h)   // the border halfedges come last
-    on_border[th.source[h]] = on_border[th.target[h]] = 1;
+  {
+    if(th.has_ends())
+      on_border[th.source[h]] = on_border[th.target[h]] = 1;
+    else
+      on_border[th.source_in(*faces, h)] = on_border[th.target_in(*faces, h)] = 1;
+  }
   key = Candidate_key(nh);
   Low_bits low(nh), front_low;                              // low: written for every candidate not refused
   Key_array candidates = candidate_keys(th, cost, on_border, key, low.data());
@@ -949,17 +960,16 @@ void sort_candidate_rest(const Triangle_halfedges& th, const CostOfRows& cost, c
 // threads and parallel rounds (take_greedily_in_rounds(), windows of the level's n / 64
 // candidates, at least 4096) from four on; `sequential_selection` forces the loop, any other
 // value the rounds with windows of that many candidates. The accepted collapses are the same.
-// `run_taking(take, ends_free)` calls take(), the loop or the rounds once the candidates are
-// sorted: a caller may run other work beside it (the loop is sequential); Run_in_place just
-// calls it. `ends_free`: the taking reads neither th.source nor th.target, which the caller may
-// then free first (the loop on the candidates' ends, given the face array th was built from
-// as `faces`, where the rest of the candidates would find their ends).
+// `run_taking(take)` calls take(), the loop or the rounds once the candidates are sorted: a
+// caller may run other work beside it (the loop is sequential); Run_in_place just calls it.
+// `faces`: the face array th was built from, where the ends of a halfedge are read when th
+// does not list them (Triangle_halfedges::build() without ends); may be null otherwise.
 constexpr std::size_t sequential_selection = ~std::size_t(0);
 
 struct Run_in_place
 {
   template <typename Take>
-  void operator()(const Take& take, bool /* ends_free */ = false) const { take(); }
+  void operator()(const Take& take) const { take(); }
 };
 
 template <typename CostOfRows, typename RunTaking = Run_in_place>
@@ -973,7 +983,7 @@ void select_collapses(const Triangle_halfedges& th, const double* xyz, const Cos
   Candidate_key key(0);
   std::size_t all = 0;
   std::uint64_t limit = 0;
-  Key_array candidates = sorted_candidates(th, cost, on_border, key, th.n, all, limit);
+  Key_array candidates = sorted_candidates(th, cost, on_border, key, th.n, all, limit, faces);
   const std::size_t sorted = candidates.size();
   accepted.clear();
   // Only the th.n cheapest candidates (of about 6 th.n) are considered, unless fewer than
@@ -992,24 +1002,21 @@ void select_collapses(const Triangle_halfedges& th, const double* xyz, const Cos
   // the loop reads the candidates' ends (candidate_ends()), the rounds their halfedges
   const bool as_ends = window == sequential_selection && !th.repeated_directed_edge;
   if(as_ends)
-    candidate_ends(th, key, candidates, 0);
+    candidate_ends(th, key, candidates, 0, faces);
   auto sort_rest = [&] {
     const std::size_t first = candidates.size();
     sort_candidate_rest(th, cost, on_border, key, limit, candidates);
     if(as_ends)
       candidate_ends(th, key, candidates, first, faces);
   };
-  // the loop on ends reads neither th.source nor th.target (the rest of the candidates, if
-  // ever sorted, take their ends from `faces`): run_taking may free them
-  const bool ends_free = as_ends && faces != nullptr;
   run_taking([&] {
     if(window == sequential_selection)
       take_greedily(th, xyz, candidates, sorted, all, sort_rest, key, budget, on_border, locked, source_of_target, accepted,
                     th.n, th.n / 16 + 1, as_ends);
     else
       take_greedily_in_rounds(th, xyz, candidates, sorted, all, sort_rest, key, budget, on_border, source_of_target, accepted,
-                              th.n, th.n / 16 + 1, window);
-  }, ends_free);
+                              th.n, th.n / 16 + 1, window, faces);
+  });
 }
 
 } // namespace internal

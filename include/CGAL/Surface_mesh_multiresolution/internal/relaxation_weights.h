@@ -90,7 +90,8 @@ public:
   // With apexes (the decomposition's selection reads them) the halfedges are built at once;
   // otherwise only when a scheme needs them (the hinges of SOD) or connectivity() is asked:
   // the curvature and uniform weights read the corners around each vertex only.
-  void set_connectivity(std::size_t n, const std::vector<Index>& triangles, bool with_apexes = false)
+  // (with_ends: Triangle_halfedges::build(); SOD's hinges read the ends)
+  void set_connectivity(std::size_t n, const std::vector<Index>& triangles, bool with_apexes = false, bool with_ends = true)
   {
     m_triangles = &triangles;
     m_n = n;
@@ -98,21 +99,21 @@ public:
     m_has_corners = false;
     m_paired = false;
     if(with_apexes)
-      m_mesh.build(n, triangles, true);
+      m_mesh.build(n, triangles, true, with_ends);
   }
 
-  // set_connectivity(n, triangles, true) for the face array that one level of collapses made
-  // from that of `before` (Triangle_halfedges::build_after_collapses(): the same halfedges;
-  // `before` and `collapses` are freed)
+  // set_connectivity(n, triangles, true, with_ends) for the face array that one level of
+  // collapses made from that of `before` (Triangle_halfedges::build_after_collapses(): the
+  // same halfedges; `before` and `collapses` are freed)
   void set_connectivity_after_collapses(std::size_t n, const std::vector<Index>& triangles, Triangle_halfedges&& before,
-                                        Collapsed_faces&& collapses)
+                                        Collapsed_faces&& collapses, bool with_ends = true)
   {
     m_triangles = &triangles;
     m_n = n;
     m_has_halfedges = true;
     m_has_corners = false;
     m_paired = false;
-    m_mesh.build_after_collapses(std::move(before), std::move(collapses), n, triangles, true);
+    m_mesh.build_after_collapses(std::move(before), std::move(collapses), n, triangles, true, with_ends);
   }
 
   // the halfedges, moved out (the builder has none afterwards)
@@ -164,15 +165,6 @@ public:
     pair_corners();
     if(scheme != Relaxation_scheme::UNIFORM)
       compute_cotangents(xyz);
-  }
-
-  // frees the halfedges' sources and targets (select_collapses(): the greedy loop on the
-  // candidates' ends does not read them), before the weights' arrays are allocated beside the
-  // loop: they take their memory (the 3.1M-vertex horse's peak 1759 -> 1706 MB)
-  void free_halfedge_ends()
-  {
-    for(Index_array* v : {&m_mesh.source, &m_mesh.target})
-      Index_array().swap(*v);
   }
 
   // frees all of the halfedges but the vertices' lists of outgoing halfedges (out_offsets,
