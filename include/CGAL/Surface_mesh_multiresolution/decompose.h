@@ -150,7 +150,8 @@ private:
   // selection and the 1-ring weights read a halfedge's ends from the face array and the twins
   // (select_collapses() is given the faces), SOD's hinges from these lists. Without them the
   // halfedges take 16 bytes per face less, at the peak of a level (level 0, or the weights'
-  // arrays beside the greedy loop): the 3.1M-vertex horse's peak 1706 -> MMMM MB.
+  // arrays beside the greedy loop): the 3.1M-vertex horse's peak 1706 -> 1668 MB (1676 -> 1588 MB in
+  // the input's order), the dragon's 230 -> 226 MB.
   bool halfedge_ends() const { return m_scheme == Relaxation_scheme::SECOND_ORDER_DIFFERENCE; }
 
   void select(std::size_t budget, std::size_t k)
