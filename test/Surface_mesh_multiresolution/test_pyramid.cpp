@@ -1397,6 +1397,53 @@ TEST_CASE("the radix sort on a bit field is a stable sort by that field", "[pyra
     }
 }
 
+TEST_CASE("permutations in place and pages given back keep the arrays' values", "[pyramid][order]")
+{
+  typedef SMR::internal::Index Index;
+  // the spatial order's permutation in place is the gather a[i] = a[from[i]], for blocks of 1
+  // and 3 values, a permutation of one cycle, of many, and the identity
+  std::mt19937 rng(5);
+  for(const std::size_t n : {std::size_t(1), std::size_t(2), std::size_t(1000), std::size_t(50000)})
+    for(int kind = 0; kind < 3; ++kind)
+    {
+      std::vector<Index> from(n);
+      std::iota(from.begin(), from.end(), Index(0));
+      if(kind == 1)
+        std::shuffle(from.begin(), from.end(), rng);
+      else if(kind == 2)
+        std::rotate(from.begin(), from.begin() + std::ptrdiff_t(n / 2), from.end());   // one cycle (n even) or a few
+      for(const std::size_t dim : {std::size_t(1), std::size_t(3)})
+      {
+        std::vector<double> a(n * dim), expected(n * dim);
+        for(std::size_t i = 0; i < a.size(); ++i)
+          a[i] = double(i) * 0.5 - 7.;
+        for(std::size_t i = 0; i < n; ++i)
+          for(std::size_t c = 0; c < dim; ++c)
+            expected[i * dim + c] = a[std::size_t(from[i]) * dim + c];
+        SMR::internal::permute_in_place(from, dim, a);
+        REQUIRE(a == expected);
+      }
+    }
+  // an array reduced in place keeps its values and its capacity when the pages of the rest go
+  // back, and can be written again past its size
+  for(const std::size_t kept : {std::size_t(0), std::size_t(1), std::size_t(4096), std::size_t(300000)})
+  {
+    std::vector<double> v(1 << 20);
+    for(std::size_t i = 0; i < v.size(); ++i)
+      v[i] = double(i) + 0.25;
+    const std::size_t capacity = v.capacity();
+    v.resize(kept);
+    SMR::internal::release_unused_capacity(v);
+    REQUIRE(v.size() == kept);
+    REQUIRE(v.capacity() == capacity);
+    for(std::size_t i = 0; i < kept; ++i)
+      REQUIRE(v[i] == double(i) + 0.25);
+    v.resize(kept + 1000, -1.);
+    for(std::size_t i = kept; i < v.size(); ++i)
+      REQUIRE(v[i] == -1.);
+  }
+}
+
 TEST_CASE("the front of the candidates holds the wanted cheapest ones when their sample misleads", "[pyramid][cost]")
 {
   // 40,000 keys: the sampled ones (every s-th from the (s / 2)-th) are the cheapest, so the

@@ -288,6 +288,15 @@ private:
     if(m_scaled)
       keep_values_of_next_level(level, 3, m_scaled_xyz);
     keep_values_of_next_level(level, 1, m_rows_to_vertices);
+    // the pages of what these arrays no longer use go back (their capacity stays level 0's),
+    // and all of m_target_of's until select() fills it again, past the next level's peak
+    for(std::vector<double>& values : m_values)
+      release_unused_capacity(values);
+    release_unused_capacity(m_scaled_xyz);
+    release_unused_capacity(m_rows_to_vertices);
+    release_unused_capacity(m_faces);
+    m_target_of.clear();
+    release_unused_capacity(m_target_of);
   }
 
   void coarsest_mesh()

@@ -26,6 +26,10 @@
 #if defined(_MSC_VER) && (defined(_M_X64) || defined(_M_IX86))
 #include <xmmintrin.h>
 #endif
+#if defined(__linux__)
+#include <sys/mman.h>
+#include <unistd.h>
+#endif
 
 #define CGAL_SMR_VERSION_MAJOR 0
 #define CGAL_SMR_VERSION_MINOR 2
@@ -51,6 +55,33 @@ typedef std::uint32_t Index;
 template <typename T>
 using Uninitialized_vector = std::vector<T, boost::noinit_adaptor<Pooled_allocator<T> > >;
 typedef Uninitialized_vector<Index> Index_array;
+
+// Gives the pages of an array's unused capacity (past its size) back to the system, keeping
+// the capacity: the arrays a decomposition reduces in place level by level (positions and
+// other channels, the face array, the input numbers of the rows) otherwise keep the pages
+// their first level touched (the 3.1M-vertex horse: 27 MB at the peak of its second level;
+// design notes). Whole pages inside the unused capacity only, so no allocator's bookkeeping
+// is touched; a page given back reads as zeros if written again. Linux (madvise with
+// MADV_DONTNEED); elsewhere nothing. Why by hand: std::vector::shrink_to_fit() copies the
+// array into a new block, which would raise the peak it is meant to lower.
+template <typename Vector>
+void release_unused_capacity(Vector& v)
+{
+#if defined(__linux__) && defined(MADV_DONTNEED)
+  typedef typename Vector::value_type T;
+  const long page_size = ::sysconf(_SC_PAGESIZE);
+  if(page_size <= 0 || v.capacity() == v.size())
+    return;
+  const std::uintptr_t page = static_cast<std::uintptr_t>(page_size);
+  const std::uintptr_t used_end = reinterpret_cast<std::uintptr_t>(v.data() + v.size());
+  const std::uintptr_t end = reinterpret_cast<std::uintptr_t>(v.data()) + v.capacity() * sizeof(T);
+  const std::uintptr_t first = (used_end + page - 1) / page * page, last = end / page * page;
+  if(last > first)
+    ::madvise(reinterpret_cast<void*>(first), last - first, MADV_DONTNEED);   // (a refusal changes nothing)
+#else
+  (void)v;
+#endif
+}
 
 // A hint that the cache line holding `p` will be read soon. Loops that visit halfedges in
 // cost order (random places of arrays larger than the cache) issue it a few iterations ahead,
