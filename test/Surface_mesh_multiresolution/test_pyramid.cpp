@@ -1397,11 +1397,12 @@ TEST_CASE("the radix sort on a bit field is a stable sort by that field", "[pyra
     }
 }
 
-TEST_CASE("permutations in place and pages given back keep the arrays' values", "[pyramid][order]")
+TEST_CASE("the spatial order's permutations, and pages given back, keep the arrays' values", "[pyramid][order]")
 {
   typedef SMR::internal::Index Index;
-  // the spatial order's permutation in place is the gather a[i] = a[from[i]], for blocks of 1
-  // and 3 values, a permutation of one cycle, of many, and the identity
+  // the spatial order's permutations (gathered, then copied back into the same array): values
+  // v[i] = v before at vertex_order[i], blocks of 1 and 3; faces in the face order, their
+  // corners renamed to places in the vertex order
   std::mt19937 rng(5);
   for(const std::size_t n : {std::size_t(1), std::size_t(2), std::size_t(1000), std::size_t(50000)})
     for(int kind = 0; kind < 3; ++kind)
@@ -1411,7 +1412,7 @@ TEST_CASE("permutations in place and pages given back keep the arrays' values", 
       if(kind == 1)
         std::shuffle(from.begin(), from.end(), rng);
       else if(kind == 2)
-        std::rotate(from.begin(), from.begin() + std::ptrdiff_t(n / 2), from.end());   // one cycle (n even) or a few
+        std::rotate(from.begin(), from.begin() + std::ptrdiff_t(n / 2), from.end());
       for(const std::size_t dim : {std::size_t(1), std::size_t(3)})
       {
         std::vector<double> a(n * dim), expected(n * dim);
@@ -1420,9 +1421,27 @@ TEST_CASE("permutations in place and pages given back keep the arrays' values", 
         for(std::size_t i = 0; i < n; ++i)
           for(std::size_t c = 0; c < dim; ++c)
             expected[i * dim + c] = a[std::size_t(from[i]) * dim + c];
-        SMR::internal::permute_in_place(from, dim, a);
+        const double* memory = a.data();
+        SMR::internal::permute_values(from, dim, a);
         REQUIRE(a == expected);
+        CHECK(a.data() == memory);                       // the array keeps its memory
       }
+      // faces (a, a+1, a+2) mod n in a shuffled face order
+      std::vector<Index> tri(3 * n), face_order(n);
+      for(std::size_t f = 0; f < n; ++f)
+        for(int c = 0; c < 3; ++c)
+          tri[3 * f + c] = Index((f + c) % n);
+      std::iota(face_order.begin(), face_order.end(), Index(0));
+      std::shuffle(face_order.begin(), face_order.end(), rng);
+      std::vector<Index> place(n);
+      for(std::size_t i = 0; i < n; ++i)
+        place[from[i]] = Index(i);
+      std::vector<Index> expected_tri(3 * n);
+      for(std::size_t p = 0; p < n; ++p)
+        for(int c = 0; c < 3; ++c)
+          expected_tri[3 * p + c] = place[tri[3 * std::size_t(face_order[p]) + c]];
+      SMR::internal::permute_faces(from, face_order, tri);
+      REQUIRE(tri == expected_tri);
     }
   // an array reduced in place keeps its values and its capacity when the pages of the rest go
   // back, and can be written again past its size

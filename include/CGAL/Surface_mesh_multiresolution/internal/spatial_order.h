@@ -12,6 +12,8 @@
 #include <CGAL/Surface_mesh_multiresolution/internal/parallel.h>
 #include <CGAL/Surface_mesh_multiresolution/internal/radix_sort.h>
 
+#include <CGAL/assertions.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -144,59 +146,51 @@ inline void spatial_order(const std::vector<double>& xyz, const std::vector<Inde
       vertex_order.push_back(static_cast<Index>(v));
 }
 
-// Both permutations are made in place, cycle by cycle: the input's arrays keep their memory.
-// Why: gathered into a fresh array of the input's size and swapped in, the ordered 3.1M-vertex
-// horse peaked higher (1616 -> 1600 MB with the in-place moves of the levels' arrays as well):
-// glibc served the new array from fresh pages while the old one's stayed with the process, in
-// its heap (design notes). Sequential, random reads: 0.09 s at 3.1M vertices.
-
-// a[i] = a before at from[i] for every i < from.size(), in blocks of `dim` values (from: a
-// permutation)
+// Both permutations gather in parallel into a scratch array of the package's pool (Block_pool:
+// the blocks the ordering's sort freed), then copy it back into the array they permute, which
+// keeps its memory. Why: gathered into a fresh array of the input's size and swapped in, the
+// ordered 3.1M-vertex horse peaked higher (1616 -> 1601 MB, with the pages of the levels'
+// reduced arrays given back too): glibc served the new array from fresh pages while the old
+// one's stayed with the process, in its heap. Permuted in place, cycle by cycle, it peaked
+// no lower and took 1.2 s more (a cache miss per element, sequential; design notes).
 template <typename T>
-void permute_in_place(const std::vector<Index>& from, std::size_t dim, std::vector<T>& a)
+void copy_back(const Uninitialized_vector<T>& from, std::vector<T>& to)
 {
-  const std::size_t n = from.size();
-  std::vector<bool> done(n, false);
-  std::vector<T> held(dim);
-  for(std::size_t start = 0; start < n; ++start)
-  {
-    if(done[start])
-      continue;
-    std::copy(a.begin() + std::ptrdiff_t(start * dim), a.begin() + std::ptrdiff_t((start + 1) * dim), held.begin());
-    std::size_t i = start;
-    for(;;)
-    {
-      done[i] = true;
-      const std::size_t j = from[i];
-      if(j == start)
-      {
-        std::copy(held.begin(), held.end(), a.begin() + std::ptrdiff_t(i * dim));
-        break;
-      }
-      std::copy(a.begin() + std::ptrdiff_t(j * dim), a.begin() + std::ptrdiff_t((j + 1) * dim), a.begin() + std::ptrdiff_t(i * dim));
-      i = j;
-    }
-  }
+  CGAL_precondition(from.size() == to.size());
+  parallel_for_blocks(from.size(), [&](std::size_t first, std::size_t last) {
+    std::copy(from.begin() + std::ptrdiff_t(first), from.begin() + std::ptrdiff_t(last), to.begin() + std::ptrdiff_t(first));
+  });
 }
+
 // values (dim per vertex, input numbers) in the vertex order (vertex_order[i]: the input number
 // of the i-th)
 inline void permute_values(const std::vector<Index>& vertex_order, std::size_t dim, std::vector<double>& values)
 {
-  permute_in_place(vertex_order, dim, values);
+  Uninitialized_vector<double> out(values.size());   // every value written below
+  parallel_for_blocks(vertex_order.size(), [&](std::size_t first, std::size_t last) {
+    for(std::size_t i = first; i < last; ++i)
+      for(std::size_t c = 0; c < dim; ++c)
+        out[i * dim + c] = values[std::size_t(vertex_order[i]) * dim + c];
+  });
+  copy_back(out, values);
 }
+
 // the face array in the face order, its vertices renamed to their places in the vertex order
 inline void permute_faces(const std::vector<Index>& vertex_order, const std::vector<Index>& face_order, std::vector<Index>& tri)
 {
-  permute_in_place(face_order, 3, tri);
   Index_array place(vertex_order.size());            // every place written below
   parallel_for_blocks(vertex_order.size(), [&](std::size_t first, std::size_t last) {
     for(std::size_t i = first; i < last; ++i)
       place[vertex_order[i]] = static_cast<Index>(i);
   });
-  parallel_for_blocks(tri.size(), [&](std::size_t first, std::size_t last) {
-    for(std::size_t k = first; k < last; ++k)
-      tri[k] = place[tri[k]];
+  Index_array out(tri.size());                       // every corner written below
+  parallel_for_blocks(face_order.size(), [&](std::size_t first, std::size_t last) {
+    for(std::size_t p = first; p < last; ++p)
+      for(int c = 0; c < 3; ++c)
+        out[3 * p + c] = place[tri[3 * std::size_t(face_order[p]) + c]];
   });
+  Index_array().swap(place);
+  copy_back(out, tri);
 }
 
 } // namespace internal
