@@ -2183,14 +2183,15 @@ TEST_CASE("the greedy loop takes the same collapses from the candidates' ends as
     {
       // 0: keys; 1: ends; 2: ends, the halfedges built without their ends (as decompose()
       // builds them): every end, the rest's included, read from the face array
-      SMR::internal::Triangle_halfedges freed;
-      freed.build(in.im.number_of_vertices(), in.im.triangles, true, false);
-      REQUIRE(freed.number_of_halfedges() == th.source.size());
+      SMR::internal::Triangle_halfedges bare;
+      bare.build(in.im.number_of_vertices(), in.im.triangles, true, false);
+      REQUIRE(!bare.has_ends());
+      REQUIRE(bare.number_of_halfedges() == th.source.size());
       std::vector<SMR::internal::Collapse> taken[3];
       for(const int variant : {0, 1, 2})
       {
         const bool as_ends = variant > 0;
-        const SMR::internal::Triangle_halfedges& t = variant == 2 ? freed : th;
+        const SMR::internal::Triangle_halfedges& t = variant == 2 ? bare : th;
         const std::vector<Index>* faces = variant == 2 ? &in.im.triangles : nullptr;
         std::vector<unsigned char> on_border;
         SMR::internal::Candidate_key key(0);

@@ -45,9 +45,9 @@ public:
   static constexpr std::size_t size = 10;
   static constexpr double discontinuity_multiplier = 100.;   // CGAL's default
 
-  // th: the connectivity of the input (rows = vertex numbers), xyz: 3 doubles per vertex
-  // th: the halfedges of the face array `tri` (their ends need not be listed: see
-  // Triangle_halfedges::build())
+  // th: the connectivity of the input (rows = vertex numbers), the halfedges of the face array
+  // `tri` (their ends need not be listed: see Triangle_halfedges::build()); xyz: 3 doubles per
+  // vertex
   void initialize(const Triangle_halfedges& th, const std::vector<Index>& tri, const std::vector<double>& xyz)
   {
     initialize_with(th, [&tri](Index h) { return tri[h]; }, xyz);

@@ -135,8 +135,8 @@ private:
 
 public:
 
-  // the number of halfedges, face and border ones (from the twins: source and target may be
-  // freed first, see select_collapses())
+  // the number of halfedges, face and border ones (from the twins: source and target are not
+  // listed when built without ends)
   std::size_t number_of_halfedges() const
   {
     CGAL_assertion(source.empty() || source.size() == twin.size());
@@ -154,6 +154,10 @@ public:
   // build_twins()): a border halfedge runs against its twin
   Index source_in(const std::vector<Index>& tri, Index h) const { return has_face(h) ? tri[h] : tri[next_in_face(twin[h])]; }
   Index target_in(const std::vector<Index>& tri, Index h) const { return has_face(h) ? tri[next_in_face(h)] : tri[twin[h]]; }
+  // the ends of halfedge h, listed or (built without ends) read from the face array `tri` it
+  // was built from, which may then not be null
+  Index source_of(Index h, const std::vector<Index>* tri) const { return has_ends() ? source[h] : source_in(*tri, h); }
+  Index target_of(Index h, const std::vector<Index>* tri) const { return has_ends() ? target[h] : target_in(*tri, h); }
 
   // tri: 3 vertex numbers (< nv) per face. Without `with_ends`, source and target stay empty
   // (16 bytes per face less: the decomposition reads the ends of a halfedge from its face array

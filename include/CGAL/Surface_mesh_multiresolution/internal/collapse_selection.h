@@ -278,21 +278,19 @@ inline Index target_of_ends(std::uint64_t ends) { return static_cast<Index>(ends
 // those loads were most of its time on large meshes, where it is the decomposition's largest
 // sequential part. Here they are independent loads in parallel blocks, and the loop streams
 // the ends. Only for halfedge structures without a repeated directed edge, where the ends name
-// the halfedge (take_greedily() finds it in the source's ring). The ends are read from
-// th.source and th.target, or, where those were freed (select_collapses()), from the face
-// array `faces` th was built from and the twins (Triangle_halfedges::source_in()).
+// the halfedge (take_greedily() finds it in the source's ring). The ends are th's lists, or,
+// where th was built without them, read from its face array `faces` and the twins
+// (Triangle_halfedges::source_of()).
 inline void candidate_ends(const Triangle_halfedges& th, const Candidate_key& key, Key_array& candidates, std::size_t first,
                            const std::vector<Index>* faces = nullptr)
 {
   CGAL_precondition(!th.repeated_directed_edge);
-  const bool listed = th.has_ends();
-  CGAL_precondition(listed || faces != nullptr);
+  CGAL_precondition(th.has_ends() || faces != nullptr);
   parallel_for_blocks(candidates.size() - first, [&](std::size_t b, std::size_t e) {
     for(std::size_t i = first + b; i < first + e; ++i)
     {
       const Index h = key.halfedge(candidates[i]);
-      candidates[i] = listed ? ends_of_candidate(th.source[h], th.target[h])
-                             : ends_of_candidate(th.source_in(*faces, h), th.target_in(*faces, h));
+      candidates[i] = ends_of_candidate(th.source_of(h, faces), th.target_of(h, faces));
     }
   });
 }
@@ -503,8 +501,7 @@ void take_greedily_in_rounds(const Triangle_halfedges& th, const double* xyz, co
       for(std::size_t i = first; i < last; ++i)
       {
         const Index h = key.halfedge(candidates[scan + i]);
-        pending[i] = th.has_ends() ? Pending{static_cast<Index>(scan + i), h, th.source[h], th.target[h]}
-                                   : Pending{static_cast<Index>(scan + i), h, th.source_in(*faces, h), th.target_in(*faces, h)};
+        pending[i] = Pending{static_cast<Index>(scan + i), h, th.source_of(h, faces), th.target_of(h, faces)};
       }
     }, grain);
     scan += count;
@@ -913,12 +910,7 @@ Key_array sorted_candidates(const Triangle_halfedges& th, const CostOfRows& cost
   const Index nh = static_cast<Index>(th.number_of_halfedges());
   on_border.assign(th.n, 0);
   for(Index h = static_cast<Index>(3 * th.nf); h < nh; ++h)   // the border halfedges come last
-  {
-    if(th.has_ends())
-      on_border[th.source[h]] = on_border[th.target[h]] = 1;
-    else
-      on_border[th.source_in(*faces, h)] = on_border[th.target_in(*faces, h)] = 1;
-  }
+    on_border[th.source_of(h, faces)] = on_border[th.target_of(h, faces)] = 1;
   key = Candidate_key(nh);
   Low_bits low(nh), front_low;                              // low: written for every candidate not refused
   Key_array candidates = candidate_keys(th, cost, on_border, key, low.data());

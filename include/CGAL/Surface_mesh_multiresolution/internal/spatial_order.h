@@ -20,7 +20,6 @@
 #include <limits>
 #include <vector>
 
-
 namespace CGAL {
 namespace Surface_mesh_multiresolution {
 namespace internal {
@@ -149,9 +148,9 @@ inline void spatial_order(const std::vector<double>& xyz, const std::vector<Inde
 // Both permutations gather in parallel into a scratch array of the package's pool (Block_pool:
 // the blocks the ordering's sort freed), then copy it back into the array they permute, which
 // keeps its memory. Why: gathered into a fresh array of the input's size and swapped in, the
-// ordered 3.1M-vertex horse peaked higher (1616 -> 1601 MB, with the pages of the levels'
-// reduced arrays given back too): glibc served the new array from fresh pages while the old
-// one's stayed with the process, in its heap. Permuted in place, cycle by cycle, it peaked
+// ordered 3.1M-vertex horse peaked higher (1652 MB against 1601 MB copied back, the pages of
+// the levels' reduced arrays given back in both): glibc served the new array from fresh pages
+// while the old one's stayed with the process, in its heap. Permuted in place, cycle by cycle, it peaked
 // no lower and took 1.2 s more (a cache miss per element, sequential; design notes).
 template <typename T>
 void copy_back(const Uninitialized_vector<T>& from, std::vector<T>& to)
