@@ -221,7 +221,7 @@ Scan read_mesh(const std::string& file)
   say(file + ": " + plural(num_vertices(scan.mesh), "vertex") + ", " + plural(num_faces(scan.mesh), "face")
       + (channels.empty() ? "" : "; channels: " + channels));
   for(const std::string& n : scan.notes) say("  repaired: " + n);
-  if(spatial_order) say("  vertices and faces put in spatial (Hilbert) order: the outputs list them so");
+  if(spatial_order) say("  faces and vertices put in the pyramid's spatial order: the outputs list them so");
   return scan;
 }
 
@@ -452,9 +452,10 @@ int main(int argc, char** argv)
   app.require_subcommand(1);
   app.add_flag("-q,--quiet", quiet, "no progress or notes on stderr");
   app.add_flag("--spatial-order", spatial_order,
-               "put the vertices (Hilbert order) and faces of every mesh read in spatial order before working on it: "
-               "faster on large meshes stored in no spatial order (decompose orders such meshes itself and keeps its outputs in "
-               "the file's order); the outputs list vertices and faces in that order");
+               "put the faces (Morton order of their centroids) and vertices (in the order those faces first name them) of every "
+               "mesh read in the spatial order a decomposition keeps of its own, before working on it: faster on large meshes "
+               "stored in no spatial order (decompose orders such meshes itself and keeps its outputs in the file's order); "
+               "the outputs list vertices and faces in that order");
   app.fallthrough();      // --quiet and --spatial-order before or after the subcommand
   const std::vector<std::string> schemes = {"curvature", "sod", "uniform"};
   std::string in, out, scheme = "curvature", guide;

@@ -346,19 +346,33 @@ void Decomposition<TriangleMesh, CostModel, Visitor>::collapse_face_array(Pyrami
   const std::size_t na = m_accepted.size();
   std::vector<Index> first_renamed(na + 1, 0);
   m_face_removed.assign(m_faces.size() / 3, 0);
-  // whether the face of o's outgoing halfedge out[q] holds e (the corners other than o's,
-  // which no other collapse renames)
-  auto holds_target = [&](Index q, Index e) {
-    const Index h = th.out[q];
-    return m_faces[Triangle_halfedges::next_in_face(h)] == e || m_faces[Triangle_halfedges::prev_in_face(h)] == e;
-  };
+  // One pass over the faces of each source o: a face that holds e is removed (its flag says
+  // where its collapsed halfedge starts), the others have o renamed e and are counted. The
+  // second pass lists the renamed corners in order, telling them by the flags (a byte per
+  // face) instead of reading the faces' corners again (two scattered reads per face: the
+  // count and the records each read them, 6 % of a decomposition).
   parallel_for_blocks(na, [&](std::size_t first, std::size_t last) {
+    Index* const faces = m_faces.data();
+    unsigned char* const removed = m_face_removed.data();
     for(std::size_t i = first; i < last; ++i)
     {
       const Collapse& c = m_accepted[i];
+      Index renamed = 0;
       for(Index q = th.out_offsets[c.o]; q < th.out_offsets[c.o + 1]; ++q)
-        if(th.has_face(th.out[q]) && !holds_target(q, c.e))   // a face (o, a, b) that stays
-          ++first_renamed[i + 1];
+      {
+        const Index g = th.out[q];                         // o -> a in face g / 3, o at corner g % 3
+        if(!th.has_face(g))
+          continue;
+        const Index next = Triangle_halfedges::next_in_face(g), prev = Triangle_halfedges::prev_in_face(g);
+        if(faces[next] == c.e || faces[prev] == c.e)     // (no other collapse renames its corners)
+          removed[g / 3] = static_cast<unsigned char>(1 + (faces[next] == c.e ? g % 3 : prev % 3));
+        else
+        {
+          faces[g] = c.e;
+          ++renamed;
+        }
+      }
+      first_renamed[i + 1] = renamed;
     }
   }, 1024);
   std::partial_sum(first_renamed.begin(), first_renamed.end(), first_renamed.begin());
@@ -371,17 +385,11 @@ void Decomposition<TriangleMesh, CostModel, Visitor>::collapse_face_array(Pyrami
       Index renamed = first_renamed[i];
       for(Index q = th.out_offsets[c.o]; q < th.out_offsets[c.o + 1]; ++q)
       {
-        if(!th.has_face(th.out[q]))                      // no face (the same test as the count)
-          continue;
-        const Index g = th.out[q];                         // o -> a in face g / 3, o at corner g % 3
-        if(holds_target(q, c.e))                           // (no other collapse renames its corners)
-          m_face_removed[g / 3] = static_cast<unsigned char>(
-              1 + (m_faces[Triangle_halfedges::next_in_face(g)] == c.e ? g % 3 : Triangle_halfedges::prev_in_face(g) % 3));
-        else
+        const Index g = th.out[q];
+        if(th.has_face(g) && m_face_removed[g / 3] == 0)
         {
           level.renamed_corners[renamed] = g;
           level.renamed_vertices[renamed++] = c.o;
-          m_faces[g] = c.e;
         }
       }
     }

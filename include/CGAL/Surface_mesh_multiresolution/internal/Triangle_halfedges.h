@@ -51,9 +51,11 @@ inline void list_face_halfedges_by_source(std::size_t n, const std::vector<Index
   };
   offsets.assign(n + 1, 0);
   for_ranges([&](Index lo, Index span) {
+    Index* const count = offsets.data() + 1;               // (raw pointers: see scatter below)
+    const Index* const corners = tri.data();
     for(Index h = 0; h < h0; ++h)
-      if(tri[h] - lo < span)                               // (unsigned: below lo wraps around)
-        ++offsets[tri[h] + 1];
+      if(corners[h] - lo < span)                           // (unsigned: below lo wraps around)
+        ++count[corners[h]];
   });
   for(std::size_t i = 0; i < n; ++i)
     offsets[i + 1] += offsets[i] + (room ? (*room)[i] : Index(0));
@@ -66,19 +68,26 @@ inline void list_face_halfedges_by_source(std::size_t n, const std::vector<Index
   // corner's next and previous vertices by remainders of its number and tested both cases at
   // every corner, took up to twice as long (the dragon's 2.6M corners, one thread: 0.042-0.055 s
   // against 0.029 s), and this sort was a sixth of a reconstruction
+  // (Raw pointers: through the vectors, every store made the compiler load their data
+  // pointers again, which a store to an Index could have changed.)
   auto scatter = [&](Index lo, Index span, auto apexes, auto one_range) {
+    Index* const to_out = out.data();
+    Index* const to_target = out_target.data();
+    Index* const to_apex = out_apex.data();
+    Index* const next_slot = fill.data();
+    const Index* const corners = tri.data();
     auto put = [&](Index v, Index h, Index next, Index apex) {
       if(!decltype(one_range)::value && v - lo >= span)   // (unsigned: below lo wraps around)
         return;
-      const Index k = fill[v]++;
-      out[k] = h;
-      out_target[k] = next;
+      const Index k = next_slot[v]++;
+      to_out[k] = h;
+      to_target[k] = next;
       if(decltype(apexes)::value)
-        out_apex[k] = apex;
+        to_apex[k] = apex;
     };
     for(Index f = 0; f < h0; f += 3)
     {
-      const Index a = tri[f], b = tri[f + 1], c = tri[f + 2];
+      const Index a = corners[f], b = corners[f + 1], c = corners[f + 2];
       put(a, f, b, c);
       put(b, f + 1, c, a);
       put(c, f + 2, a, b);

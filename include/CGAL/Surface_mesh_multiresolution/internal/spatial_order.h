@@ -9,6 +9,7 @@
 #define CGAL_SURFACE_MESH_MULTIRESOLUTION_INTERNAL_SPATIAL_ORDER_H
 
 #include <CGAL/Surface_mesh_multiresolution/internal/config.h>
+#include <CGAL/Surface_mesh_multiresolution/internal/helpers.h>
 #include <CGAL/Surface_mesh_multiresolution/internal/parallel.h>
 #include <CGAL/Surface_mesh_multiresolution/internal/radix_sort.h>
 
@@ -67,16 +68,19 @@ inline std::uint64_t spread_to_every_third_bit(std::uint64_t x)
   return x;
 }
 
-// The spatial order of a mesh (xyz: 3 finite doubles per vertex, tri: 3 vertex numbers per
-// face): face_order[p] is the input position of the p-th face, vertex_order[i] the input number
-// of the i-th vertex (those of no face last, in input order). Faces are sorted by the Morton
-// code of their centroid on a grid of 2^21 cells per axis over the bounding cube, ties in input
-// order; the keys are distinct (code, position) pairs, so the order is the same for every
-// number of threads. Empty orders where the coordinates' extent is not a finite positive number.
-inline void spatial_order(const std::vector<double>& xyz, const std::vector<Index>& tri, std::vector<Index>& vertex_order,
-                          std::vector<Index>& face_order)
+// The spatial order of a mesh of n vertices and nf faces, read through coordinate(v, c) (the
+// coordinate c of vertex v, a finite double), face_size(f) and corner(f, j) (the j-th vertex
+// of face f, j < face_size(f)): face_order[p] is the input position of the p-th face,
+// vertex_order[i] the input number of the i-th vertex (those of no face last, in input order).
+// Faces are sorted by the Morton code of their centroid on a grid of 2^21 cells per axis over
+// the bounding cube, ties in input order; the keys are distinct (code, position) pairs, so the
+// order is the same for every number of threads. Empty orders where the coordinates' extent is
+// not a finite positive number. Polygons of any size (the command-line tool orders a soup with
+// it before triangulating, so that its outputs and a decomposition share this order).
+template <typename Coordinate, typename FaceSize, typename Corner>
+void spatial_order(std::size_t n, std::size_t nf, const Coordinate& coordinate, const FaceSize& face_size,
+                   const Corner& corner, std::vector<Index>& vertex_order, std::vector<Index>& face_order)
 {
-  const std::size_t n = xyz.size() / 3, nf = tri.size() / 3;
   vertex_order.clear();
   face_order.clear();
   double lo[3], hi[3];
@@ -88,8 +92,8 @@ inline void spatial_order(const std::vector<double>& xyz, const std::vector<Inde
   for(std::size_t v = 0; v < n; ++v)
     for(int c = 0; c < 3; ++c)
     {
-      lo[c] = (std::min)(lo[c], xyz[3 * v + c]);
-      hi[c] = (std::max)(hi[c], xyz[3 * v + c]);
+      lo[c] = (std::min)(lo[c], double(coordinate(v, c)));
+      hi[c] = (std::max)(hi[c], double(coordinate(v, c)));
     }
   double extent = 0.;
   for(int c = 0; c < 3; ++c)
@@ -105,12 +109,15 @@ inline void spatial_order(const std::vector<double>& xyz, const std::vector<Inde
   parallel_for_blocks(nf, [&](std::size_t first, std::size_t last) {
     for(std::size_t f = first; f < last; ++f)
     {
+      const std::size_t size = face_size(f);
+      const double d = double(size);
       std::uint64_t code = 0;
       for(int c = 0; c < 3; ++c)
       {
         // the centroid's offset from the low corner, each term divided first (no overflow)
-        const double s = (xyz[3 * std::size_t(tri[3 * f]) + c] - lo[c]) / 3. + (xyz[3 * std::size_t(tri[3 * f + 1]) + c] - lo[c]) / 3.
-                       + (xyz[3 * std::size_t(tri[3 * f + 2]) + c] - lo[c]) / 3.;
+        double s = 0.;
+        for(std::size_t j = 0; j < size; ++j)
+          s += (double(coordinate(std::size_t(corner(f, j)), c)) - lo[c]) / d;
         double cell = s * scale;
         cell = cell >= 0. ? (std::min)(cell, cells) : 0.;
         code |= spread_to_every_third_bit(static_cast<std::uint64_t>(cell)) << c;
@@ -131,18 +138,34 @@ inline void spatial_order(const std::vector<double>& xyz, const std::vector<Inde
   std::vector<Index> number(n, invalid_index);
   vertex_order.reserve(n);
   for(std::size_t p = 0; p < nf; ++p)
-    for(int c = 0; c < 3; ++c)
+  {
+    const std::size_t f = face_order[p];
+    for(std::size_t j = 0, size = face_size(f); j < size; ++j)
     {
-      const Index v = tri[3 * std::size_t(face_order[p]) + c];
+      const std::size_t v = std::size_t(corner(f, j));
       if(number[v] == invalid_index)
       {
         number[v] = static_cast<Index>(vertex_order.size());
-        vertex_order.push_back(v);
+        vertex_order.push_back(static_cast<Index>(v));
       }
     }
+  }
   for(std::size_t v = 0; v < n; ++v)
     if(number[v] == invalid_index)
       vertex_order.push_back(static_cast<Index>(v));
+}
+
+// the spatial order of a triangle mesh (xyz: 3 finite doubles per vertex, tri: 3 vertex
+// numbers per face)
+inline void spatial_order(const std::vector<double>& xyz, const std::vector<Index>& tri, std::vector<Index>& vertex_order,
+                          std::vector<Index>& face_order)
+{
+  const double* const p = xyz.data();
+  const Index* const t = tri.data();
+  spatial_order(
+      xyz.size() / 3, tri.size() / 3, [p](std::size_t v, int c) { return p[3 * v + std::size_t(c)]; },
+      [](std::size_t) { return std::size_t(3); }, [t](std::size_t f, std::size_t j) { return t[3 * f + j]; }, vertex_order,
+      face_order);
 }
 
 // Both permutations gather in parallel into a scratch array of the package's pool (Block_pool:
