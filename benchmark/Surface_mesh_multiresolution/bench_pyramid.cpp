@@ -258,8 +258,8 @@ Measure meshopt_to(const Mesh& mesh, long target)
 }
 
 // The same mesh in the order `smr --spatial-order` gives a file (smr_tool::order_spatially():
-// vertices in CGAL's Hilbert order, faces in the order of their first vertex): the memory order
-// of a scanner's grid or of a locality-ordered file. Loop subdivision appends each level's new
+// the order a decomposition keeps of its own, Memory_order::SPATIAL: faces in the Morton order
+// of their centroids, vertices by first use): the memory order of a locality-ordered file. Loop subdivision appends each level's new
 // vertices and faces after the old ones, so neighbours of the subdivided meshes lie far apart
 // in memory.
 Mesh spatially_ordered(const Mesh& mesh)
