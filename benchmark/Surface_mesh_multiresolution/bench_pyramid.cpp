@@ -10,6 +10,8 @@
 //                                            speed-up on a stream, a gather and a computation)
 //        bench_pyramid --sizes FILE N       (the mesh and N Loop subdivisions of it, as
 //                                            subdivided and in a spatial order)
+//        bench_pyramid --ratio PAIRS FILE...  (decomposition against meshopt_simplify, in
+//                                            alternating pairs; all threads, then one)
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/Surface_mesh_multiresolution.h>
@@ -40,6 +42,7 @@
 #include <sys/resource.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -237,15 +240,22 @@ int scaling_mode(int argc, char** argv)
 #endif
 }
 
-// meshopt_simplify to about `target` vertices (its arrays built outside the timing)
-Measure meshopt_to(const Mesh& mesh, long target)
+// meshopt_simplify's input arrays, built outside the timing
+struct Meshopt_input
 {
   std::vector<float> xyz;
   std::vector<unsigned int> indices;
-  for(auto v : mesh.vertices()) xyz.insert(xyz.end(), {float(mesh.point(v).x()), float(mesh.point(v).y()), float(mesh.point(v).z())});
-  for(auto f : mesh.faces())
-    for(auto v : CGAL::vertices_around_face(mesh.halfedge(f), mesh)) indices.push_back(v.idx());
-  return timed([&] {
+
+  explicit Meshopt_input(const Mesh& mesh)
+  {
+    for(auto v : mesh.vertices()) xyz.insert(xyz.end(), {float(mesh.point(v).x()), float(mesh.point(v).y()), float(mesh.point(v).z())});
+    for(auto f : mesh.faces())
+      for(auto v : CGAL::vertices_around_face(mesh.halfedge(f), mesh)) indices.push_back(v.idx());
+  }
+
+  // meshopt_simplify to about `target` vertices; the vertex count it reached
+  long simplify(long target) const
+  {
     // meshoptimizer targets an index count: faces ~ 2 x vertices on a closed mesh
     std::vector<unsigned int> out(indices.size());
     const std::size_t count = meshopt_simplify(out.data(), indices.data(), indices.size(), xyz.data(), xyz.size() / 3,
@@ -254,8 +264,79 @@ Measure meshopt_to(const Mesh& mesh, long target)
     long nv = 0;
     for(std::size_t i = 0; i < count; ++i) if(!used[out[i]]) { used[out[i]] = 1; ++nv; }
     return nv;
-  });
+  }
+};
+
+// meshopt_simplify to about `target` vertices (its arrays built outside the timing)
+Measure meshopt_to(const Mesh& mesh, long target)
+{
+  const Meshopt_input input(mesh);
+  return timed([&] { return input.simplify(target); });
 }
+
+// `bench_pyramid --ratio PAIRS FILE...`: the decomposition to 1 % against meshopt_simplify to
+// the same vertex count, in pairs run one after the other (decompose, then meshopt), PAIRS
+// pairs per thread count (all threads, then one). Why: the main table times each system once
+// in turn, a minute apart on the dragon, and this shared machine's speed drifts by 10-30 %
+// within minutes; the pairs see the same state. Printed: the best time of each, the ratio of
+// the bests, and the median of the pairs' own ratios.
+int ratio_mode(int argc, char** argv)
+{
+  const int pairs = (std::max)(1, std::atoi(argv[2]));
+  std::vector<int> counts;
+#ifdef CGAL_LINKED_WITH_TBB
+  counts.push_back(tbb::info::default_concurrency());
+  if(counts[0] != 1)
+    counts.push_back(1);
+#else
+  counts.push_back(1);
+#endif
+  std::printf("| mesh | vertices | threads | pairs | decompose, best (s) | meshopt_simplify, best (s) | ratio of bests | median ratio of the pairs |\n");
+  std::printf("|---|---:|---:|---:|---:|---:|---:|---:|\n");
+  for(int i = 3; i < argc; ++i)
+  {
+    Mesh mesh;
+    if(!read_mesh(argv[i], mesh))
+    {
+      std::cerr << "cannot read " << argv[i] << " as a triangle mesh: skipped\n";
+      continue;
+    }
+    const std::size_t n = mesh.number_of_vertices();
+    const Meshopt_input input(mesh);
+    const std::string name = std::string(argv[i]).substr(std::string(argv[i]).find_last_of('/') + 1);
+    for(int threads : counts)
+    {
+#ifdef CGAL_LINKED_WITH_TBB
+      tbb::global_control limit(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
+#endif
+      double best_d = 1e30, best_m = 1e30;
+      std::vector<double> ratios;
+      long target = 0;
+      for(int r = 0; r < pairs; ++r)
+      {
+        CGAL::Real_timer t;
+        t.start();
+        const auto p = SMR::decompose(mesh, SMR::parameters::minimum_number_of_vertices(n / 100));
+        const double d = t.time();
+        target = long(p.number_of_vertices(p.number_of_levels()));
+        t.reset();
+        input.simplify(target);
+        const double m = t.time();
+        best_d = (std::min)(best_d, d);
+        best_m = (std::min)(best_m, m);
+        ratios.push_back(d / m);
+      }
+      std::sort(ratios.begin(), ratios.end());
+      const double median = ratios.size() % 2 ? ratios[ratios.size() / 2]
+                                              : 0.5 * (ratios[ratios.size() / 2 - 1] + ratios[ratios.size() / 2]);
+      std::printf("| %s | %zu | %d | %d | %.3f | %.3f | %.2f | %.2f |\n", name.c_str(), n, threads, pairs, best_d, best_m,
+                  best_d / best_m, median);
+      std::fflush(stdout);
+    }
+  }
+  return 0;
+}
+
 
 // The same mesh in the order `smr --spatial-order` gives a file (smr_tool::order_spatially():
 // the order a decomposition keeps of its own, Memory_order::SPATIAL: faces in the Morton order
@@ -317,6 +398,8 @@ int main(int argc, char** argv)
     return scaling_mode(argc, argv);
   if(argc == 4 && std::string(argv[1]) == "--sizes")
     return sizes_mode(argv[2], std::atoi(argv[3]));
+  if(argc >= 4 && std::string(argv[1]) == "--ratio")
+    return ratio_mode(argc, argv);
   std::vector<std::string> files;
   for(int i = 1; i < argc; ++i) files.push_back(argv[i]);
   if(files.empty())

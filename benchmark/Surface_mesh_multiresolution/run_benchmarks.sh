@@ -22,6 +22,9 @@ echo "## bench_relaxation"
 echo
 echo "## bench_pyramid"
 "$BUILD/benchmark/Surface_mesh_multiresolution/bench_pyramid" "${files[@]}"
+echo
+echo "## bench_pyramid --ratio (decomposition against meshopt_simplify, alternating pairs)"
+"$BUILD/benchmark/Surface_mesh_multiresolution/bench_pyramid" --ratio 7 "${files[@]}"
 pairs=()
 if [ -d "$DATA" ]; then
   for m in Fandisk0.3 Fandisk0.7 Block0.4 Twelve0.5Impulsive SharpSphere0.3 Bunny0.2; do
