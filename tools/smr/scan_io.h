@@ -848,8 +848,8 @@ inline void repair(Soup& s)
 // keeps of its own (Memory_order::SPATIAL, internal::spatial_order()): polygons in the Morton
 // order of their centroids, points numbered in the order those polygons first name them, each
 // polygon's corners kept in their cyclic order. Neighbours then lie close in memory, and a
-// decomposition (Memory_order::AUTOMATIC) finds the numbering in order and keeps it: the same
-// pyramid as the library's own ordering of the file as read. A large mesh whose file lists its
+// decomposition (Memory_order::AUTOMATIC) finds the numbering in order and keeps it: the order
+// the library would give the file as read. A large mesh whose file lists its
 // vertices and faces in no spatial order (Loop subdivision appends each step's new vertices
 // after the old ones) decomposes faster (benchmark README). Points whose extent is not finite
 // and positive keep the file's order.
