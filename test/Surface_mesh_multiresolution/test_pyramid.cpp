@@ -19,7 +19,9 @@
 #include <algorithm>
 #include <array>
 #include <atomic>
+#include <cmath>
 #include <functional>
+#include <limits>
 #include <map>
 #include <numeric>
 #include <random>
@@ -1395,6 +1397,91 @@ TEST_CASE("the radix sort on a bit field is a stable sort by that field", "[pyra
       SMR::internal::radix_sort_bits(keys.data(), n, f.shift, f.bits);
       REQUIRE(keys == expected);
     }
+}
+
+// Eq. 5's last step against its definition, on more values than one block of the parallel
+// pass: detail d = f - p (or -p where that overflows, a non-finite prediction taken as 0), a
+// correction exactly where fl(p + d) misses f (sign of zero included), listed in increasing
+// position, and f recovered bit for bit by the synthesis' rule; the same lists for any number
+// of threads, and with the predictions read from the details array itself (in place).
+TEST_CASE("details and corrections: one pass gives Eq. 5's details and every needed correction, in order", "[pyramid][weights]")
+{
+  const std::size_t n = 100000;   // several blocks of 2^14 values
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> unit(-1., 1.);
+  std::vector<double> f(n), p(n);
+  for(std::size_t k = 0; k < n; ++k)
+  {
+    // plain values, values whose detail rounds (large f, small p), overflows, a non-finite
+    // prediction and signed zeros, spread over all blocks
+    switch(k % 7)
+    {
+    case 0: f[k] = 1e16 * unit(rng); p[k] = 0.1 + unit(rng); break;
+    case 1: f[k] = 1.7e308; p[k] = -1.7e308; break;
+    case 2: f[k] = -0.0; p[k] = 0.; break;
+    case 3: f[k] = unit(rng); p[k] = std::numeric_limits<double>::infinity(); break;
+    default: f[k] = unit(rng); p[k] = unit(rng); break;
+    }
+  }
+  auto same_bits = [](double a, double b) { return std::memcmp(&a, &b, sizeof(double)) == 0; };
+  auto same_details = [&](const std::vector<double>& a, const std::vector<double>& b) {
+    return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0;
+  };
+  auto same_corrections = [&](const SMR::internal::Corrections& a, const SMR::internal::Corrections& b) {
+    bool same = a.size() == b.size();
+    for(std::size_t i = 0; same && i < a.size(); ++i)
+      same = a[i].first == b[i].first && same_bits(a[i].second, b[i].second);
+    return same;
+  };
+  auto check = [&](const std::vector<double>& details, const SMR::internal::Corrections& corrections) {
+    std::size_t next = 0;
+    bool definition = true, exact = true, ordered = true;
+    for(std::size_t k = 0; k < n; ++k)
+    {
+      const double pk = std::isfinite(p[k]) ? p[k] : 0.;
+      double d = f[k] - pk;
+      if(!std::isfinite(d)) d = -pk;
+      definition = definition && same_bits(details[k], d);
+      const double t = pk + details[k];
+      const bool needed = t != f[k] || std::signbit(t) != std::signbit(f[k]);
+      double v = t;
+      if(next < corrections.size() && corrections[next].first == k)
+      {
+        v = SMR::internal::apply_correction(t, corrections[next].second);
+        ++next;
+      }
+      else if(needed)
+        ordered = false;                                    // a needed correction missing (or out of order)
+      exact = exact && same_bits(v, f[k]);
+    }
+    CHECK(definition);
+    CHECK(exact);
+    CHECK(ordered);
+    CHECK(next == corrections.size());                      // no correction that is not needed
+  };
+  std::vector<double> details(n);
+  SMR::internal::Corrections corrections;
+  SMR::internal::details_and_corrections(f, [&](std::size_t k) { return p[k]; }, details.data(), corrections);
+  CHECK(corrections.size() >= 2 * (n / 7));                 // at least the overflows and the zeros
+  check(details, corrections);
+  // predictions read from the array the details are written to
+  std::vector<double> in_place(p);
+  SMR::internal::Corrections corrections_in_place;
+  const double* const d = in_place.data();
+  SMR::internal::details_and_corrections(f, [d](std::size_t k) { return d[k]; }, in_place.data(), corrections_in_place);
+  CHECK(same_details(in_place, details));
+  CHECK(same_corrections(corrections_in_place, corrections));
+#ifdef CGAL_LINKED_WITH_TBB
+  for(int threads : {1, 3})
+  {
+    tbb::task_arena arena(threads);
+    std::vector<double> details_t(n);
+    SMR::internal::Corrections corrections_t;
+    arena.execute([&] { SMR::internal::details_and_corrections(f, [&](std::size_t k) { return p[k]; }, details_t.data(), corrections_t); });
+    CHECK(same_details(details_t, details));
+    CHECK(same_corrections(corrections_t, corrections));
+  }
+#endif
 }
 
 TEST_CASE("the spatial order's permutations, and pages given back, keep the arrays' values", "[pyramid][order]")

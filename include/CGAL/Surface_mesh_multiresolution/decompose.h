@@ -363,9 +363,10 @@ void Decomposition<TriangleMesh, CostModel, Visitor>::collapse_face_array(Pyrami
         const Index g = th.out[q];                         // o -> a in face g / 3, o at corner g % 3
         if(!th.has_face(g))
           continue;
-        const Index next = Triangle_halfedges::next_in_face(g), prev = Triangle_halfedges::prev_in_face(g);
-        if(faces[next] == c.e || faces[prev] == c.e)     // (no other collapse renames its corners)
-          removed[g / 3] = static_cast<unsigned char>(1 + (faces[next] == c.e ? g % 3 : prev % 3));
+        const Index prev = Triangle_halfedges::prev_in_face(g);
+        const bool e_after_o = faces[Triangle_halfedges::next_in_face(g)] == c.e;   // (no other collapse renames these corners)
+        if(e_after_o || faces[prev] == c.e)                // the face holds e: removed, its collapsed halfedge starts at o or at e
+          removed[g / 3] = static_cast<unsigned char>(1 + (e_after_o ? g % 3 : prev % 3));
         else
         {
           faces[g] = c.e;
