@@ -387,6 +387,7 @@ TEST_CASE("decomposition is deterministic: runs with all threads, with four (par
     });
   }
   tbb::global_control one_thread(tbb::global_control::max_allowed_parallelism, 1);   // b: sequential
+  CHECK(SMR::internal::available_threads() == 1);   // the process-wide limit, which the arena does not report
 #endif
   const auto b = SMR::decompose(m);
   const SMR::Pyramid<Mesh>* runs[] = {&a, &c};

@@ -132,10 +132,12 @@ public:
   // The costs of moving row o onto rows e, Q_o read once: candidate_keys() computes the costs of
   // a whole 1-ring in a row, where a call per halfedge (not inlined there) read Q_o again for
   // every neighbour. The same operations as cost(): the same bits (a test compares).
+  // (The arrays' addresses are copied in: read through the quadrics' object, the compiler
+  // loaded them again after every key the loop stored.)
   class Costs_from
   {
   public:
-    Costs_from(const Plane_quadrics& q, Index o) : m_q(q)
+    Costs_from(const Plane_quadrics& q, Index o) : m_xyz(q.m_xyz), m_own(q.m_own.data())
     {
       CGAL_assertion(q.m_own_current);
       const double* a = q.quadric(o);
@@ -144,11 +146,12 @@ public:
     }
     double operator()(Index e) const
     {
-      return evaluate(m_a, m_q.point(e)) + m_q.m_own[e];
+      return evaluate(m_a, m_xyz + 3 * std::size_t(e)) + m_own[e];
     }
 
   private:
-    const Plane_quadrics& m_q;
+    const double* m_xyz;
+    const double* m_own;
     double m_a[size];
   };
   Costs_from costs_from(Index o) const { return Costs_from(*this, o); }

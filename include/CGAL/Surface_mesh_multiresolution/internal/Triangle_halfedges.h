@@ -53,9 +53,13 @@ inline void list_face_halfedges_by_source(std::size_t n, const std::vector<Index
   for_ranges([&](Index lo, Index span) {
     Index* const count = offsets.data() + 1;               // (raw pointers: see scatter below)
     const Index* const corners = tri.data();
-    for(Index h = 0; h < h0; ++h)
-      if(corners[h] - lo < span)                           // (unsigned: below lo wraps around)
+    if(ranges == 1)                                        // every source in range: no test per corner
+      for(Index h = 0; h < h0; ++h)
         ++count[corners[h]];
+    else
+      for(Index h = 0; h < h0; ++h)
+        if(corners[h] - lo < span)                         // (unsigned: below lo wraps around)
+          ++count[corners[h]];
   });
   for(std::size_t i = 0; i < n; ++i)
     offsets[i + 1] += offsets[i] + (room ? (*room)[i] : Index(0));

@@ -841,27 +841,36 @@ Key_array candidate_keys(const Triangle_halfedges& th, const CostOfRows& cost,
 {
   Key_array candidates(th.number_of_halfedges());
   parallel_for_blocks(th.n, [&](std::size_t first, std::size_t last) {
-    const Index end = th.out_offsets[last];
+    // local copies of the key and of the arrays' addresses: read through references, they were
+    // loaded again after every store of a key or of its low bits (a store to an unsigned int
+    // may change an int of the key or an Index of the lists)
+    const Candidate_key local_key = key;
+    const Index* const offsets = th.out_offsets.data();
+    const Index* const out = th.out.data();
+    const Index* const out_target = th.out_target.data();
+    std::uint64_t* const keys = candidates.data();
+    std::uint32_t* const low = low_bits;
+    const Index end = offsets[last];
     for(std::size_t o = first; o < last; ++o)
     {
       const auto cost_from_o = costs_from_source(cost, static_cast<Index>(o), 0);
       const bool border = on_border[o] != 0;
-      for(Index k = th.out_offsets[o]; k < th.out_offsets[o + 1]; ++k)
+      for(Index k = offsets[o], row_end = offsets[o + 1]; k < row_end; ++k)
       {
         if(k + cost_prefetch_distance < end)
-          prefetch_cost_operands(cost, th.out_target[k + cost_prefetch_distance], 0);
-        const Index h = th.out[k];
+          prefetch_cost_operands(cost, out_target[k + cost_prefetch_distance], 0);
+        const Index h = out[k];
         // NaN, refused: border vertices move along the border only
         const double c = border && !th.is_border_edge(h) ? std::numeric_limits<double>::quiet_NaN()
-                                                         : cost_from_o(th.out_target[k]);
+                                                         : cost_from_o(out_target[k]);
         if(std::isnan(c))
-          candidates[k] = refused_candidate;
+          keys[k] = refused_candidate;
         else
         {
           const std::uint64_t image = Candidate_key::image(c);
-          candidates[k] = key.of_image(image, h);
-          if(low_bits != nullptr)
-            low_bits[k] = key.low_bits_of_image(image);
+          keys[k] = local_key.of_image(image, h);
+          if(low != nullptr)
+            low[k] = local_key.low_bits_of_image(image);
         }
       }
     }

@@ -18,6 +18,8 @@
 
 #ifdef CGAL_LINKED_WITH_TBB
 #include <tbb/blocked_range.h>
+#include <tbb/global_control.h>
+#include <tbb/info.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 #include <tbb/task_group.h>
@@ -169,11 +171,18 @@ void move_down_in_waves(std::size_t number_of_blocks, const ReadBegin& read_begi
   }
 }
 
-// The number of threads the parallel loops may use here (1 without TBB).
+// The number of threads the parallel loops may use here (1 without TBB): the arena's, or the
+// process-wide limit of a tbb::global_control set below the machine's default, which the arena
+// does not report (under a limit of one thread the corner listing read the faces once per
+// range of sources, all on one thread). An arena larger than the machine (a test's four
+// threads on two cores) keeps its own number.
 inline int available_threads()
 {
 #ifdef CGAL_LINKED_WITH_TBB
-  return tbb::this_task_arena::max_concurrency();
+  const std::size_t limit = tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism);
+  const int arena = tbb::this_task_arena::max_concurrency();
+  const bool limited = limit > 0 && limit < std::size_t(tbb::info::default_concurrency());
+  return limited && limit < std::size_t(arena) ? static_cast<int>(limit) : arena;
 #else
   return 1;
 #endif

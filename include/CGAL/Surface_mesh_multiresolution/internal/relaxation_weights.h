@@ -546,6 +546,18 @@ private:
     const Index b = m_offs[i], e = corners_end(i);
     if(b == e || (fixed != nullptr && fixed[i]))
       return Relaxation_row_rule::FIXED;
+    if(m_twin_pairs)
+    {
+      // A corner's apex b is unmatched exactly when the twin of b -> i is a border halfedge,
+      // i -> b, which the row lists after its corners (and every border halfedge out of i is
+      // such a twin): one test instead of a twin's read per corner
+      if(e != m_offs[i + 1])
+        return Relaxation_row_rule::BORDER;
+      for(Index k = b; k < e; ++k)
+        if(!corner_has_twin(k))
+          return Relaxation_row_rule::BORDER;
+      return Relaxation_row_rule::SCHEME;
+    }
     for(Index k = b; k < e; ++k)
       if(!corner_has_twin(k) || !apex_matched(k))
         return Relaxation_row_rule::BORDER;
