@@ -186,7 +186,7 @@ public:
     point_at_corner_ends();
     if(!with_twins)
     {
-      if(!(m_paired && m_twin_pairs))     // (paired through the twins: they are the pairing, kept in place)
+      if(!m_twin_pairs)                   // (paired through the twins: they are the pairing, kept in place)
         Index_array().swap(m_mesh.twin);
     }
     else
@@ -908,7 +908,7 @@ private:
   const std::vector<Index>* m_triangles = nullptr;
   std::size_t m_n = 0;
   bool m_has_halfedges = false, m_has_corners = false, m_paired = false, m_listed = false;
-  bool m_twin_pairs = false;   // paired through the halfedges' twins (pair_corners()), else through the arrays below
+  bool m_twin_pairs = false;   // paired through the halfedges' twins (pair_corners(); implies m_paired), else through the arrays below
   Triangle_halfedges m_mesh;
   // the corners around every vertex (corners()) and their pairing (match_ring())
   std::vector<Index> m_ring_offsets;
