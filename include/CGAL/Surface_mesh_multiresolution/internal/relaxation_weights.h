@@ -306,6 +306,7 @@ public:
   {
     if(!m_paired)
       allocate_ring_pairs();
+    const bool twin_curvature = m_twin_pairs && scheme == Relaxation_scheme::CURVATURE;
     parallel_for_blocks(count, [&](std::size_t first, std::size_t last) {
       std::vector<std::pair<Index, Index> > sorted;   // long rings only
       std::vector<Index> col;
@@ -313,6 +314,24 @@ public:
       for(std::size_t q = first; q < last; ++q)
       {
         const std::size_t i = rows == nullptr ? q : std::size_t(rows[q]);
+        if(twin_curvature && (fixed == nullptr || !fixed[i]))
+        {
+          const Index b = m_offs[i], e = m_offs[i + 1];
+          if(b != e && m_outp[e - 1] < m_h0)          // corners only: no border halfedge out of i
+          {
+            if(col.size() < e - b)
+            {
+              col.resize(2 * (e - b));
+              val.resize(2 * (e - b));
+            }
+            if(closed_curvature_ring_row(b, e, col.data(), val.data()))
+            {
+              normalised_curvature_row(e - b, val.data());
+              apply_row(i, col.data(), val.data(), std::size_t(e - b));
+              continue;
+            }
+          }
+        }
         Relaxation_row_rule rule = m_paired ? rule_of_paired_ring(i, fixed) : match_ring(i, fixed, sorted);
         const std::size_t length = ring_row_length(i, rule);
         if(col.size() < length)
@@ -629,6 +648,29 @@ private:
       val[k - b] = m_cotangent[m_outp[k]] + m_cotangent[twin_cotangent(k)];
     }
     return normalised_curvature_row(e - b, val);
+  }
+
+  // The row of rule_of_paired_ring(), ring_row_length() and curvature_ring_row() in one pass,
+  // for a vertex whose corners b..e are its whole row (paired through the twins, curvature):
+  // false as soon as a corner has no twin (a BORDER row: the caller takes the general path),
+  // else the cotangent sums of curvature_ring_row(), the same additions. Why: the three passes
+  // each found the row's end and read its twins again (0.24 G of the dragon decomposition's
+  // 6.3 G instructions).
+  bool closed_curvature_ring_row(Index b, Index e, Index* col, double* val) const
+  {
+    const Index* const out = m_outp;
+    const Index* const twin = m_mesh.twin.data();
+    const double* const cot = m_cotangent.data();
+    const Index h0 = m_h0;
+    for(Index k = b; k < e; ++k)
+    {
+      const Index h = out[k], t = twin[h];
+      if(t >= h0)
+        return false;
+      col[k - b] = target_of_corner(k);
+      val[k - b] = cot[h] + cot[t];
+    }
+    return true;
   }
 
   // SOD rows have lengths known only once assembled: one sequential pass into an upper bound
