@@ -1801,6 +1801,71 @@ TEST_CASE("Triangle_halfedges pairs the halfedges of the mesh, also when a direc
   check_twins_only(long_ring, fan);
 }
 
+// Whether a face array repeats a directed edge (or has a face with a repeated vertex), the
+// fallback condition of Triangle_halfedges::build(), is found by the ring matching (with the
+// apexes: two corners claiming one twin, or two corners without a face across sharing a
+// target; without: every pair of targets): against a count of the directed edges, on random
+// face arrays over few vertices (many repeats, with and without a face across) and on the
+// long-ring path.
+TEST_CASE("Triangle_halfedges finds every repeated directed edge, with and without apexes", "[pyramid][link]")
+{
+  typedef SMR::internal::Index Index;
+  CGAL::Random rng(15);
+  auto repeats = [](const std::vector<Index>& tri) {
+    std::set<std::pair<Index, Index> > seen;
+    for(std::size_t f = 0; f < tri.size(); f += 3)
+      for(int c = 0; c < 3; ++c)
+      {
+        const Index a = tri[f + c], b = tri[f + (c + 1) % 3];
+        if(a == b || !seen.insert(std::make_pair(a, b)).second)
+          return true;
+      }
+    return false;
+  };
+  std::size_t with_repeat = 0, without = 0;
+  for(int trial = 0; trial < 400; ++trial)
+  {
+    const Index n = Index(4 + trial % 9);
+    const int faces = 1 + rng.get_int(0, 2 * int(n));
+    std::vector<Index> tri;
+    for(int f = 0; f < faces; ++f)
+    {
+      Index a = Index(rng.get_int(0, int(n))), b = Index(rng.get_int(0, int(n))), c = Index(rng.get_int(0, int(n)));
+      if(trial % 2 == 0)                                       // half the trials: no repeated vertex in a face
+        while(b == a) b = Index(rng.get_int(0, int(n)));
+      if(trial % 2 == 0)
+        while(c == a || c == b) c = Index(rng.get_int(0, int(n)));
+      tri.insert(tri.end(), {a, b, c});
+    }
+    const bool expected = repeats(tri);
+    (expected ? with_repeat : without) += 1;
+    for(bool apexes : {true, false})
+    {
+      INFO("trial " << trial << ", apexes " << apexes);
+      SMR::internal::Triangle_halfedges th;
+      th.build(n, tri, apexes);
+      CHECK(th.repeated_directed_edge == expected);
+      for(Index h = 0; h < th.twin.size(); ++h)              // a pairing in every case
+      {
+        REQUIRE(th.twin[h] != SMR::internal::invalid_index);
+        CHECK(th.twin[th.twin[h]] == h);
+      }
+    }
+  }
+  CHECK(with_repeat > 50);
+  CHECK(without > 50);
+  // a ring of 3 corners where 0 -> 1 repeats with no face holding 1 -> 0 (neither corner has a
+  // face across), and one where it repeats beside the face across
+  for(const std::vector<Index>& tri : {std::vector<Index>{0, 1, 2, 0, 1, 3, 0, 4, 5},
+                                       std::vector<Index>{0, 1, 2, 0, 1, 3, 1, 0, 4}})
+    for(bool apexes : {true, false})
+    {
+      SMR::internal::Triangle_halfedges th;
+      th.build(6, tri, apexes);
+      CHECK(th.repeated_directed_edge);
+    }
+}
+
 // every array of two halfedge structures
 void check_same_halfedges(const SMR::internal::Triangle_halfedges& a, const SMR::internal::Triangle_halfedges& b)
 {

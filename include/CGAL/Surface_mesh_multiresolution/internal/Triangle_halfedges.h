@@ -543,23 +543,39 @@ private:
       bool repeated = false;
       for(std::size_t a = first; a < last; ++a)
       {
-        repeated = repeated || ring_repeats_a_target(static_cast<Index>(a));
         const Index begin = offsets[a], end = offsets[a + 1];
         if(apexes && end - begin <= long_ring)
         {
+          // A target repeats exactly when two corners find the same first corner q of apex b
+          // (equal targets make the same search) or neither finds one (then compared in pairs
+          // below, among the corners without a face across): the test of
+          // ring_repeats_a_target() without its pass over every pair of corners
+          std::uint32_t claimed = 0, unmatched = 0;
           for(Index k = begin; k != end; ++k)
           {
             const Index b = targets[k];
             repeated = repeated || b == a;
-            for(Index q = begin; q != end; ++q)
-              if(apex[q] == b)
-              {
-                twins[halfedges[k]] = prev_in_face(halfedges[q]);   // the halfedge b -> a of that face
-                break;
-              }
+            Index q = begin;
+            while(q != end && apex[q] != b)
+              ++q;
+            if(q == end)
+              unmatched |= std::uint32_t(1) << (k - begin);
+            else
+            {
+              const std::uint32_t bit = std::uint32_t(1) << (q - begin);
+              repeated = repeated || (claimed & bit) != 0;
+              claimed |= bit;
+              twins[halfedges[k]] = prev_in_face(halfedges[q]);   // the halfedge b -> a of that face
+            }
           }
+          for(Index k = begin; unmatched != 0 && k != end; ++k)
+            if((unmatched >> (k - begin)) & 1u)
+              for(Index j = begin; j < k; ++j)
+                if(((unmatched >> (j - begin)) & 1u) && targets[j] == targets[k])
+                  repeated = true;
           continue;
         }
+        repeated = repeated || ring_repeats_a_target(static_cast<Index>(a));
         for(Index k = begin; k != end; ++k)
         {
           const Index b = out_target[k];
