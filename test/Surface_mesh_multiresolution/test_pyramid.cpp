@@ -1176,7 +1176,11 @@ TEST_CASE("candidate keys are the same with and without the cost model's prefetc
   const Input_quadrics in(m);
   const SMR::internal::Triangle_halfedges& th = in.th;
   const SMR::internal::Plane_quadrics& quadrics = in.quadrics;
-  const std::vector<unsigned char> on_border(th.n, 0);
+  // rows flagged as on a border (every seventh): their candidates along interior edges are
+  // refused, which the keys must agree on and candidate_keys() must count
+  std::vector<unsigned char> on_border(th.n, 0);
+  for(std::size_t v = 0; v < th.n; v += 7)
+    on_border[v] = 1;
   const SMR::internal::Candidate_key key(static_cast<Index>(th.source.size()));
   std::atomic<std::size_t> hints(0), bad_hints(0);
   const Hinted_cost hinted{quadrics, th.n, &hints, &bad_hints};
@@ -1192,8 +1196,11 @@ TEST_CASE("candidate keys are the same with and without the cost model's prefetc
     const SMR::internal::Plane_quadrics& q;
   };
   std::vector<std::uint32_t> low(th.source.size());
-  const auto by_ring = SMR::internal::candidate_keys(th, Ring_cost{quadrics}, on_border, key, low.data());
+  std::size_t refused_count = 0;
+  const auto by_ring = SMR::internal::candidate_keys(th, Ring_cost{quadrics}, on_border, key, low.data(), &refused_count);
   CHECK(std::vector<std::uint64_t>(by_ring.begin(), by_ring.end()) == std::vector<std::uint64_t>(without.begin(), without.end()));
+  CHECK(refused_count == std::size_t(std::count(by_ring.begin(), by_ring.end(), SMR::internal::refused_candidate)));
+  CHECK(refused_count > 0);
   std::size_t low_checked = 0;
   for(std::size_t o = 0; o < th.n; ++o)
     for(Index k = th.out_offsets[o]; k < th.out_offsets[o + 1]; ++k)
@@ -1335,8 +1342,18 @@ TEST_CASE("the candidates' radix sort orders by (cost, halfedge) like a comparis
       }
       std::size_t total = 0;
       std::uint64_t limit = 0;
+      SMR::internal::Key_array m3 = m;
       SMR::internal::Key_array front = SMR::internal::cheapest_keys(m, key, refused, wanted, total, limit);
       CHECK(total == c.size());
+      // told the number of keys not refused (sorted_candidates(): candidate_keys() counts the
+      // refused ones), it counts only those under the limit: the same front, total and limit
+      std::size_t total3 = 0;
+      std::uint64_t limit3 = 0;
+      const SMR::internal::Key_array front3
+        = SMR::internal::cheapest_keys(m3, key, refused, wanted, total3, limit3, nullptr, nullptr, c.size());
+      CHECK(front3 == front);
+      CHECK(total3 == total);
+      CHECK(limit3 == limit);
       CHECK(front.size() >= (std::min)(wanted, c.size()));
       for(std::uint64_t x : front)
         REQUIRE(key.leading_bits(x) <= limit);

@@ -736,9 +736,16 @@ inline std::uint64_t select_front_limit(const Key_array& c, const Candidate_key&
 // left as it is (compacting the rest in place and moving the front before it were sequential
 // passes over the 6 n keys: a third of the select's time). `low` (if given): the low bits of
 // every key of `c`, whose front's are then written to `front_low` (and `low` is emptied with `c`).
+// `kept_total` (if known): the number of keys of `c` not refused, which the count then takes
+// instead of counting them. (A refused key, ~0, has all its leading bits set, which no key of
+// a cost that is not NaN has: +inf's are 0xfff000. So a limit that is some key's leading
+// bits keeps the refused keys out without testing them.)
+constexpr std::size_t unknown_total = ~std::size_t(0);
+
 inline Key_array cheapest_keys(Key_array& c, const Candidate_key& key, std::uint64_t refused,
                                std::size_t wanted, std::size_t& total, std::uint64_t& limit,
-                               Low_bits* low = nullptr, Low_bits* front_low = nullptr)
+                               Low_bits* low = nullptr, Low_bits* front_low = nullptr,
+                               std::size_t kept_total = unknown_total)
 {
   const std::size_t n = c.size();
   const std::size_t blocks = (n + front_block - 1) / front_block;
@@ -749,22 +756,28 @@ inline Key_array cheapest_keys(Key_array& c, const Candidate_key& key, std::uint
   bool counted = false;
   if(limit != ~std::uint64_t(0))
   {
-    // the keys not refused and those under the sampled limit, per block
+    // the keys not refused (unless known) and those under the sampled limit, per block
+    CGAL_assertion(limit < (refused >> shift));
     std::vector<std::size_t> under(blocks);
+    const bool count_kept = kept_total == unknown_total;
     for_key_blocks(n, [&](std::size_t b, std::size_t first, std::size_t last) {
       const std::uint64_t* keys = c.data();
       const std::uint64_t lim = limit, none = refused;
       std::size_t k = 0, u = 0;
-      for(std::size_t i = first; i < last; ++i)
-      {
-        const std::uint64_t x = keys[i];
-        k += x != none;
-        u += (x != none) & ((x >> shift) <= lim);
-      }
+      if(count_kept)
+        for(std::size_t i = first; i < last; ++i)
+        {
+          const std::uint64_t x = keys[i];
+          k += x != none;
+          u += (x >> shift) <= lim;                      // (refused keys are above the limit)
+        }
+      else
+        for(std::size_t i = first; i < last; ++i)
+          u += (keys[i] >> shift) <= lim;
       kept[b] = k;
       under[b] = u;
     });
-    total = 0;
+    total = count_kept ? 0 : kept_total;
     for(std::size_t b = 0; b < blocks; ++b)
     {
       total += kept[b];
@@ -784,6 +797,7 @@ inline Key_array cheapest_keys(Key_array& c, const Candidate_key& key, std::uint
       front_low->swap(*low);
     return all;
   }
+  CGAL_assertion(limit < (refused >> shift));         // a key's leading bits (sampled or selected)
   Key_array front(offset[blocks]);
   if(low != nullptr)
     front_low->resize(front.size());
@@ -799,12 +813,12 @@ inline Key_array cheapest_keys(Key_array& c, const Candidate_key& key, std::uint
     const std::uint32_t* low_bits = low_at;
     std::uint32_t* to_low = front_low_at;
     const int s = shift;
-    const std::uint64_t lim = limit, none = refused;
+    const std::uint64_t lim = limit;
     std::size_t w = offset[b];
     for(std::size_t i = first; i < last; ++i)
     {
       const std::uint64_t x = keys[i];
-      if(x != none && (x >> s) <= lim)
+      if((x >> s) <= lim)                                // (refused keys are above the limit)
       {
         if(low_bits != nullptr)
           to_low[w] = low_bits[i];
@@ -837,9 +851,10 @@ constexpr Index cost_prefetch_distance = 16;
 template <typename CostOfRows>
 Key_array candidate_keys(const Triangle_halfedges& th, const CostOfRows& cost,
                          const std::vector<unsigned char>& on_border, const Candidate_key& key,
-                         std::uint32_t* low_bits = nullptr)
+                         std::uint32_t* low_bits = nullptr, std::size_t* refused_count = nullptr)
 {
   Key_array candidates(th.number_of_halfedges());
+  std::atomic<std::size_t> refused_keys(0);
   parallel_for_blocks(th.n, [&](std::size_t first, std::size_t last) {
     // local copies of the key and of the arrays' addresses: read through references, they were
     // loaded again after every store of a key or of its low bits (a store to an unsigned int
@@ -851,6 +866,7 @@ Key_array candidate_keys(const Triangle_halfedges& th, const CostOfRows& cost,
     std::uint64_t* const keys = candidates.data();
     std::uint32_t* const low = low_bits;
     const Index end = offsets[last];
+    std::size_t refused_here = 0;
     for(std::size_t o = first; o < last; ++o)
     {
       const auto cost_from_o = costs_from_source(cost, static_cast<Index>(o), 0);
@@ -864,7 +880,10 @@ Key_array candidate_keys(const Triangle_halfedges& th, const CostOfRows& cost,
         const double c = border && !th.is_border_edge(h) ? std::numeric_limits<double>::quiet_NaN()
                                                          : cost_from_o(out_target[k]);
         if(std::isnan(c))
+        {
           keys[k] = refused_candidate;
+          ++refused_here;
+        }
         else
         {
           const std::uint64_t image = Candidate_key::image(c);
@@ -874,7 +893,10 @@ Key_array candidate_keys(const Triangle_halfedges& th, const CostOfRows& cost,
         }
       }
     }
+    refused_keys.fetch_add(refused_here, std::memory_order_relaxed);
   }, 1024);
+  if(refused_count != nullptr)
+    *refused_count = refused_keys.load();
   return candidates;
 }
 
@@ -922,14 +944,16 @@ Key_array sorted_candidates(const Triangle_halfedges& th, const CostOfRows& cost
     on_border[th.source_of(h, faces)] = on_border[th.target_of(h, faces)] = 1;
   key = Candidate_key(nh);
   Low_bits low(nh), front_low;                              // low: written for every candidate not refused
-  Key_array candidates = candidate_keys(th, cost, on_border, key, low.data());
+  std::size_t refused = 0;
+  Key_array candidates = candidate_keys(th, cost, on_border, key, low.data(), &refused);
   // Only the cheapest `wanted` are sorted (the level considers them first; of about 6 n
   // candidates it takes n), with every candidate that shares their leading cost bits (the
   // exact costs order runs of equal cost bits): a true prefix of the full order; the rest is
   // computed again and sorted if ever needed (sort_candidate_rest(): a few small levels of a
   // decomposition). Dragon: 18 % of a decomposition in the sort before the partial sort; its
   // std::nth_element then took 10 % on two threads, sequential.
-  Key_array front = cheapest_keys(candidates, key, refused_candidate, wanted, total, limit, &low, &front_low);
+  Key_array front = cheapest_keys(candidates, key, refused_candidate, wanted, total, limit, &low, &front_low,
+                                  candidates.size() - refused);
   Key_array().swap(candidates);
   Low_bits().swap(low);
   sort_front(front, front_low, key);
