@@ -756,33 +756,22 @@ inline Key_array cheapest_keys(Key_array& c, const Candidate_key& key, std::uint
   bool counted = false;
   if(limit != ~std::uint64_t(0))
   {
-    // the keys not refused (unless known) and those under the sampled limit, per block
+    // the keys under the sampled limit, per block (refused keys are above it)
     CGAL_assertion(limit < (refused >> shift));
     std::vector<std::size_t> under(blocks);
-    const bool count_kept = kept_total == unknown_total;
     for_key_blocks(n, [&](std::size_t b, std::size_t first, std::size_t last) {
       const std::uint64_t* keys = c.data();
-      const std::uint64_t lim = limit, none = refused;
-      std::size_t k = 0, u = 0;
-      if(count_kept)
-        for(std::size_t i = first; i < last; ++i)
-        {
-          const std::uint64_t x = keys[i];
-          k += x != none;
-          u += (x >> shift) <= lim;                      // (refused keys are above the limit)
-        }
-      else
-        for(std::size_t i = first; i < last; ++i)
-          u += (keys[i] >> shift) <= lim;
-      kept[b] = k;
+      const std::uint64_t lim = limit;
+      std::size_t u = 0;
+      for(std::size_t i = first; i < last; ++i)
+        u += (keys[i] >> shift) <= lim;
       under[b] = u;
     });
-    total = count_kept ? 0 : kept_total;
+    // (a caller that does not know the keys not refused has them counted here: tests only)
+    total = kept_total != unknown_total ? kept_total
+                                        : n - std::size_t(std::count(c.begin(), c.end(), refused));
     for(std::size_t b = 0; b < blocks; ++b)
-    {
-      total += kept[b];
       offset[b + 1] = offset[b] + under[b];
-    }
     counted = 2 * rank < total && offset[blocks] >= rank;
   }
   if(!counted && (limit == ~std::uint64_t(0) || 2 * rank < total))   // (else all keys are wanted)
@@ -840,8 +829,9 @@ inline void keys_above(Key_array& c, const Candidate_key& key, std::uint64_t ref
 // The keys of the candidate collapses of one level, every halfedge o -> e of M_k in the order
 // of the vertices' lists of outgoing halfedges, `refused_candidate` for those that would move a border
 // vertex off the border and those the cost model refuses; `low_bits` (if given, one per
-// candidate, in the same order): the low bits of each candidate's cost (Candidate_key::low_bits()).
-// Computed in parallel (TBB), vertex by vertex (the quadric of o is read once for its 1-ring,
+// candidate, in the same order): the low bits of each candidate's cost (Candidate_key::low_bits());
+// `refused_count` (if given): the number of refused candidates (cheapest_keys()' kept_total
+// is the others). Computed in parallel (TBB), vertex by vertex (the quadric of o is read once for its 1-ring,
 // Plane_quadrics::costs_from(); those of its neighbours are near in memory), each into its own
 // slot. The operands of the cost of the candidate `cost_prefetch_distance` places ahead are
 // prefetched: on the dragon the costs waited on the loads of Q_e and p_e (46 % of their

@@ -655,9 +655,10 @@ private:
   // for a vertex whose corners b..e are its whole row (paired through the twins, curvature):
   // false as soon as a corner has no twin (a BORDER row: the caller takes the general path),
   // else the cotangent sums of curvature_ring_row(), the same additions, and the row's
-  // positive and negative masses (normalised_curvature_row()'s sums, in the same order). Why: the three passes
-  // each found the row's end and read its twins again (the dragon's decomposition, one thread:
-  // 6.32 -> 6.18 G instructions, 3 % faster).
+  // positive and negative masses (normalised_curvature_row()'s sums, in the same order).
+  // Why: those three passes and the normalisation's first each found the row's end or read
+  // its twins and weights again (the dragon's decomposition, one thread: 6.32 -> 6.07 G
+  // instructions).
   bool closed_curvature_ring_row(Index b, Index e, Index* col, double* val, double& positive, double& negative) const
   {
     const Index* const out = m_outp;
