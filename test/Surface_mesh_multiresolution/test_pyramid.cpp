@@ -1217,6 +1217,67 @@ TEST_CASE("candidate keys are the same with and without the cost model's prefetc
   CHECK(bad_hints.load() == 0);
 }
 
+TEST_CASE("the quadrics of the next level are those of the kept rows plus their sources', with their own errors", "[pyramid][cost]")
+{
+  typedef SMR::internal::Index Index;
+  typedef SMR::internal::Plane_quadrics Plane_quadrics;
+  const Index none = SMR::internal::invalid_index;
+  CGAL::Random rng(8);
+  Mesh m = smr_test::icosphere<Mesh>(5);                     // 10,242 vertices: the passes run in parallel blocks
+  for(auto v : vertices(m))
+    m.point(v) = m.point(v) + Vector_3(rng.get_double(-.01, .01), rng.get_double(-.01, .01), rng.get_double(-.01, .01));
+  Input_quadrics in(m);
+  const std::size_t n = in.th.n, size = Plane_quadrics::size;
+  // the level's collapses, selected as decompose() selects them
+  std::vector<unsigned char> on_border, locked;
+  SMR::internal::Index_array source_of_target;
+  std::vector<SMR::internal::Collapse> accepted;
+  SMR::internal::select_collapses(in.th, in.xyz.data(), [&](Index o, Index e) { return in.quadrics.cost(o, e); },
+                                  std::size_t(-1), on_border, locked, source_of_target, accepted);
+  REQUIRE(accepted.size() > 1000);
+  // expected: M_k's quadrics with Q_e += Q_o made one collapse after the other, then the even
+  // rows kept in order
+  std::vector<double> q(in.quadrics.quadric(0), in.quadrics.quadric(0) + size * n);
+  std::vector<Index> target_of(n, none), even, next_row(n, none);
+  std::vector<std::size_t> is_target(n, 0);
+  for(const SMR::internal::Collapse& c : accepted)
+  {
+    for(std::size_t i = 0; i < size; ++i)
+      q[size * c.e + i] = q[size * c.o + i] + q[size * c.e + i];
+    target_of[c.o] = c.e;
+    is_target[c.e] = 1;
+  }
+  for(std::size_t v = 0; v < n; ++v)
+    if(target_of[v] == none)
+    {
+      next_row[v] = static_cast<Index>(even.size());
+      even.push_back(static_cast<Index>(v));
+    }
+  in.quadrics.next_level(accepted, even, next_row);
+  // M_{k+1}'s positions: the even rows' moved down in place, as the decomposition moves them
+  for(std::size_t j = 0; j < even.size(); ++j)
+    for(int c = 0; c < 3; ++c)
+      in.xyz[3 * j + c] = in.xyz[3 * std::size_t(even[j]) + c];
+  in.xyz.resize(3 * even.size());
+  in.quadrics.begin_level(in.xyz);
+  std::size_t different = 0, targets = 0, wrong_costs = 0;
+  for(std::size_t j = 0; j < even.size(); ++j)
+  {
+    const double* got = in.quadrics.quadric(static_cast<Index>(j));
+    for(std::size_t i = 0; i < size; ++i)
+      different += got[i] == q[size * even[j] + i] ? 0 : 1;
+    targets += is_target[even[j]];
+    // the cost of moving another row a onto j: Q_a(p_j) + Q_j(p_j), the latter from next_level()
+    const Index a = static_cast<Index>((j + 1) % even.size());
+    const double* p = in.xyz.data() + 3 * j;
+    const double expected = Plane_quadrics::evaluate(in.quadrics.quadric(a), p) + Plane_quadrics::evaluate(q.data() + size * even[j], p);
+    wrong_costs += *in.quadrics.cost(a, static_cast<Index>(j)) == expected ? 0 : 1;
+  }
+  CHECK(targets == accepted.size());                         // every target is an even row, compared
+  CHECK(different == 0);
+  CHECK(wrong_costs == 0);
+}
+
 namespace {
 // the Garland-Heckbert plane policies under another type: decompose() then drives them
 // through SMS edge profiles on a working halfedge mesh instead of its index-based quadrics

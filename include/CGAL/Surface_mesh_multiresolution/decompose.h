@@ -270,8 +270,6 @@ private:
 
   void move_to_next_level(const Pyramid_level& level)
   {
-    m_cost.collapse_all(m_accepted);
-    m_cost.end_level(level.even_rows);
     // (the rows' arrays are reduced in place and this one is kept: see keep_values_of_next_level());
     // the faces of M_{k+1} hold even rows only, so the entries of odd rows are not read
     std::vector<Index>& next_row = m_target_of;
@@ -279,6 +277,7 @@ private:
       for(std::size_t j = first; j < last; ++j)
         next_row[level.even_rows[j]] = static_cast<Index>(j);
     });
+    m_cost.next_level(m_accepted, level.even_rows, next_row);   // reads M_k's positions: before they move
     parallel_for_blocks(m_faces.size(), [&](std::size_t first, std::size_t last) {
       for(std::size_t i = first; i < last; ++i)
         m_faces[i] = next_row[m_faces[i]];

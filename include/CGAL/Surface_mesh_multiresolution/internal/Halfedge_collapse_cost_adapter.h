@@ -159,7 +159,6 @@ public:
 
   void initialize(const Triangle_halfedges&, const std::vector<Index>&, const std::vector<double>&) {}
   void begin_level(const std::vector<Index>& rows_to_vertices, const std::vector<double>&) { m_rows = &rows_to_vertices; }
-  void end_level(const std::vector<Index>&) {}   // the working copy collapsed as it went
 
   Optional<double> cost(Index o, Index e) const { return m_adapter->cost(work_halfedge((*m_rows)[o], (*m_rows)[e])); }
 
@@ -175,9 +174,10 @@ public:
     m_adapter->after_collapse(kept);
   }
 
-  // a level's accepted collapses, in order (each edits the working copy)
+  // a level's accepted collapses, in order (each edits the working copy, which then holds
+  // M_{k+1}: the rows of the next level need nothing more)
   template <typename Collapses>
-  void collapse_all(const Collapses& accepted)
+  void next_level(const Collapses& accepted, const std::vector<Index>&, const std::vector<Index>&)
   {
     for(const auto& c : accepted)
       collapse(c.o, c.e);

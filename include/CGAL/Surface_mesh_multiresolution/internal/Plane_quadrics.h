@@ -108,7 +108,7 @@ private:
   }
 
 public:
-  // A new level: xyz holds the positions of its rows (the quadrics follow them, see retain()).
+  // A new level: xyz holds the positions of its rows (the quadrics follow them, see next_level()).
   void begin_level(const std::vector<double>& xyz)
   {
     if(m_xyz != xyz.data() || !m_own_current)
@@ -125,7 +125,7 @@ public:
   // beside p_e: two to three cache lines instead of one to two).
   Optional<double> cost(Index o, Index e) const
   {
-    CGAL_assertion(m_own_current);                     // begin_level() after the last collapse
+    CGAL_assertion(m_own_current);                     // begin_level() after next_level()
     return Optional<double>(evaluate(quadric(o), point(e)) + m_own[e]);
   }
 
@@ -165,37 +165,52 @@ public:
     prefetch(m_own.data() + e);
   }
 
-  void collapse(Index o, Index e)
-  {
-    m_own_current = false;
-    add_quadric(o, e);
-  }
-
-  // Q_e += Q_o for a level's accepted collapses ({o, e} each), in parallel: the selection
-  // locks the closed 1-ring of each source, so no target is taken twice nor is any source's,
-  // and each sum is the one of the sequential loop
+  // The quadrics of the next level M_{k+1}, after a level's accepted collapses ({o, e} each),
+  // in one pass over its rows, in parallel: its row j is the row r = even_rows[j] of M_k
+  // (next_row[r] = j for the even rows of M_k), whose quadric is Q_r, or Q_o + Q_r where r is
+  // the target of the accepted collapse o -> r; and Q_r(p_r) is evaluated at once, with p_r
+  // read in M_k's positions (begin_level() keeps it when M_{k+1}'s positions are those values
+  // moved down in place in the same array, as the decomposition moves them). The selection
+  // locks the closed 1-ring of each source, so no target is taken twice nor is any source's.
+  // The memory follows the level's size (a new array of M_{k+1}'s rows).
+  // Why one pass: the sums made in place first read and wrote every target's 80 bytes at a
+  // random place, a gather of the kept rows read them again, and begin_level() read the next
+  // level's quadrics a third time; here the targets are found through an array of a source per
+  // row of M_{k+1} (4 bytes, written at random), and every quadric is read once and written once.
   template <typename Collapses>
-  void collapse_all(const Collapses& accepted)
+  void next_level(const Collapses& accepted, const std::vector<Index>& even_rows, const std::vector<Index>& next_row)
   {
-    m_own_current = false;
-    Uninitialized_vector<double>().swap(m_own);           // (evaluated again for the next level)
+    const std::size_t n = even_rows.size();
+    Uninitialized_vector<double>().swap(m_own);         // M_k's: not read again
+    Uninitialized_vector<Index> source(n);
+    parallel_for_blocks(n, [&](std::size_t first, std::size_t last) {
+      std::fill(source.data() + first, source.data() + last, invalid_index);
+    });
     parallel_for_blocks(accepted.size(), [&](std::size_t first, std::size_t last) {
       for(std::size_t i = first; i < last; ++i)
-        add_quadric(accepted[i].o, accepted[i].e);
+        source[next_row[accepted[i].e]] = accepted[i].o;   // distinct targets: each j written once at most
     });
-  }
-
-  // keeps the quadrics of the rows `kept` (increasing), in order: the rows of the next level
-  // (the memory follows the level's size; gathered in parallel into a vector of that size)
-  void retain(const std::vector<Index>& kept)
-  {
-    Uninitialized_vector<double> q(size * kept.size());
-    parallel_for_blocks(kept.size(), [&](std::size_t first, std::size_t last) {
+    Uninitialized_vector<double> q(size * n), own(n);
+    parallel_for_blocks(n, [&](std::size_t first, std::size_t last) {
       for(std::size_t j = first; j < last; ++j)
-        copy_values(m_q.data() + size * kept[j], size, q.data() + size * j);
+      {
+        const Index r = even_rows[j];
+        double* b = q.data() + size * j;
+        const double* e = quadric(r);
+        if(source[j] == invalid_index)
+          copy_values(e, size, b);
+        else
+        {
+          const double* a = quadric(source[j]);
+          for(std::size_t i = 0; i < size; ++i)
+            b[i] = a[i] + e[i];                             // add_quadric(): Q_o + Q_e
+        }
+        own[j] = evaluate(b, point(r));
+      }
     });
     m_q.swap(q);
-    m_own_current = false;
+    m_own.swap(own);
+    m_own_current = true;
   }
 
   // x^T Q x for the homogeneous point (x, 1)
@@ -212,13 +227,6 @@ public:
 private:
   const double* point(Index v) const { return m_xyz + 3 * std::size_t(v); }
 
-  void add_quadric(Index o, Index e)
-  {
-    const double* a = quadric(o);
-    double* b = m_q.data() + size * std::size_t(e);
-    for(std::size_t i = 0; i < size; ++i)
-      b[i] = a[i] + b[i];
-  }
 
   // m_own[v] = Q_v(p_v) for every row v, once per level (read by cost())
   void evaluate_own_errors()

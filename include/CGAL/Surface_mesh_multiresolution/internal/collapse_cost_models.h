@@ -34,11 +34,12 @@ namespace internal {
 //                                                           position of every row of M_k
 //   cost(o, e)                                              Optional<double>: the cost of
 //                                                           moving row o onto row e (empty: refused)
-//   collapse(o, e)                                          an accepted collapse
-//   collapse_all(accepted)                                  a level's accepted collapses ({o, e} each)
-//   end_level(even_rows)                                    the rows of M_k that stay, in
-//                                                           increasing order: the rows of
-//                                                           the next level
+//   next_level(accepted, even_rows, next_row)               a level's accepted collapses
+//                                                           ({o, e} each) made; even_rows:
+//                                                           the rows of M_k that stay, in
+//                                                           increasing order (the rows of
+//                                                           M_{k+1}), next_row: the row of
+//                                                           M_{k+1} of every even row of M_k
 //
 // - Plane_quadric_collapse_cost: CGAL's default GarlandHeckbert_plane_policies, evaluated on
 //   index arrays (Plane_quadrics.h): no halfedge mesh, quadrics stored by row.
@@ -59,9 +60,6 @@ struct Plane_quadric_collapse_cost : Plane_quadrics
                               const GeomTraits&, const UserCost&) {}
 
   void begin_level(const std::vector<Index>&, const std::vector<double>& xyz) { Plane_quadrics::begin_level(xyz); }
-
-  // the quadrics of the rows that stay, by row of the next level
-  void end_level(const std::vector<Index>& even_rows) { retain(even_rows); }
 };
 
 template <typename TriangleMesh, typename GeomTraits, typename GetCost>
