@@ -112,7 +112,7 @@ private:
     else
       m_visitor.on_level_started(k, rows());
     connectivity(k);
-    select(budget, k);
+    select(budget);
     if(m_accepted.empty())
     {
       std::vector<std::vector<double> >().swap(m_details);
@@ -154,18 +154,17 @@ private:
   // the input's order), the dragon's 230 -> 226 MB.
   bool halfedge_ends() const { return m_scheme == Relaxation_scheme::SECOND_ORDER_DIFFERENCE; }
 
-  void select(std::size_t budget, std::size_t k)
+  void select(std::size_t budget)
   {
     const Triangle_halfedges& th = m_builder.connectivity();
-    m_predicted = false;
-    if(m_scheme != Relaxation_scheme::SECOND_ORDER_DIFFERENCE && k >= first_level_predicted_beside)
+    if(m_scheme != Relaxation_scheme::SECOND_ORDER_DIFFERENCE)
     {
       // The weights' corner pairs and cotangents, and the predictions of every channel, depend
       // on M_k and its values only (predict_with_rows_once()): they are computed beside the
       // taking of the candidates, which is sequential below four threads (the task's parallel
-      // loops go on on both threads once the taking is done). Allocated here, in this thread,
-      // once the candidates are sorted (in the memory their keys freed: allocated before them,
-      // the levels' page faults doubled)
+      // loops go on on both threads once the taking is done), on every level. Allocated here,
+      // in this thread, once the candidates are sorted (in the memory their keys freed:
+      // allocated before them, the levels' page faults doubled)
       select_collapses(th, xyz().data(), Cost_of_rows<CostModel>{m_cost}, budget, m_on_border, m_locked,
                        m_source_of_target, m_accepted, 0, [&](const auto& take) {
                          m_builder.allocate_paired_rows(m_scheme);
@@ -176,7 +175,6 @@ private:
                          });
                          m_builder.release_weight_data();
                        }, &m_faces);
-      m_predicted = true;
     }
     else
       select_collapses(th, xyz().data(), Cost_of_rows<CostModel>{m_cost}, budget, m_on_border, m_locked,
@@ -194,8 +192,6 @@ private:
     });
     if(m_scheme == Relaxation_scheme::SECOND_ORDER_DIFFERENCE)   // SOD's hinges read the twins
       return;
-    if(!m_predicted)
-      m_builder.pair_corners_from_halfedges();
     m_builder.keep_outgoing_lists_only(true);       // the twins too: the next level's halfedges read them
   }
 
@@ -226,16 +222,9 @@ private:
     // the weights are not kept: reconstruct() computes them again from the same positions
     // (Level_weights), which costs less than holding them. The 1-ring schemes compute each
     // row as it is applied, to every channel (predict_with_rows_once()), beside the selection
-    // but on the first level; SOD's rows are assembled first (sequentially), then applied.
+    // (select()); SOD's rows are assembled first (sequentially), then applied.
     if(m_scheme != Relaxation_scheme::SECOND_ORDER_DIFFERENCE)
     {
-      if(!m_predicted)
-      {
-        m_builder.prepare_rows(m_scheme, xyz().data());
-        allocate_predictions();
-        predict();
-        m_builder.release_weight_data();   // as soon as the rows are applied: level 0's memory is near the peak
-      }
       level.details = std::move(m_details);
       details_in_place(m_values, level.details, level.corrections);
       return;
@@ -321,8 +310,6 @@ private:
   Sparse_weights m_weights;                     // lambda^k of the current level
   std::vector<Relaxation_row_rule> m_rules;
   std::vector<unsigned char> m_on_border, m_locked;
-  bool m_predicted = false;                     // whether select() computed the predictions beside the taking
-  static constexpr std::size_t first_level_predicted_beside = 1;
   std::vector<std::vector<double> > m_details;  // per channel, rows of M_k: the predictions (predict()), then the level's details
   Index_array m_source_of_target;               // selection scratch, kept across the levels
   std::vector<Collapse> m_accepted;
