@@ -35,20 +35,14 @@ namespace internal {
 // lists are those of the sequential sort for any number of tasks (no atomics; with one
 // histogram per task the memory would grow with the tasks times the vertices). `room`, when
 // given (n entries), leaves room[v] places at the end of v's row, not written here.
-inline void list_face_halfedges_by_source(std::size_t n, const std::vector<Index>& tri, bool with_apexes,
-                                          std::vector<Index>& offsets, Index_array& out,
-                                          Index_array& out_target, Index_array& out_apex,
-                                          const std::vector<Index>* room = nullptr)
+// `counted`: offsets already holds the counts of count_face_halfedges_by_source() (which a
+// caller may run beside other work: its ranges all read every corner, so that on two threads
+// it took as long as on one).
+template <typename ForRanges>
+void count_face_halfedges_by_source(std::size_t n, const std::vector<Index>& tri, std::vector<Index>& offsets,
+                                    std::size_t ranges, const ForRanges& for_ranges)
 {
   const Index h0 = static_cast<Index>(tri.size());
-  // a range per thread (at most 8: each reads all corners), one more per 2^15 corners
-  const std::size_t ranges = (std::min)({std::size_t(available_threads()), std::size_t(8), std::size_t(h0 >> 15) + 1});
-  auto for_ranges = [&](const auto& f) {
-    parallel_for_blocks(ranges, [&](std::size_t first, std::size_t last) {
-      for(std::size_t r = first; r < last; ++r)
-        f(static_cast<Index>(n * r / ranges), static_cast<Index>(n * (r + 1) / ranges - n * r / ranges));
-    }, 1);
-  };
   offsets.assign(n + 1, 0);
   for_ranges([&](Index lo, Index span) {
     Index* const count = offsets.data() + 1;               // (raw pointers: see scatter below)
@@ -61,6 +55,31 @@ inline void list_face_halfedges_by_source(std::size_t n, const std::vector<Index
         if(corners[h] - lo < span)                         // (unsigned: below lo wraps around)
           ++count[corners[h]];
   });
+}
+
+// offsets[v + 1]: the number of corners of vertex v in `tri`, offsets[0] = 0 (in this thread)
+inline void count_face_halfedges_by_source(std::size_t n, const std::vector<Index>& tri, std::vector<Index>& offsets)
+{
+  count_face_halfedges_by_source(n, tri, offsets, 1, [n](const auto& f) { f(Index(0), static_cast<Index>(n)); });
+}
+
+inline void list_face_halfedges_by_source(std::size_t n, const std::vector<Index>& tri, bool with_apexes,
+                                          std::vector<Index>& offsets, Index_array& out,
+                                          Index_array& out_target, Index_array& out_apex,
+                                          const std::vector<Index>* room = nullptr, bool counted = false)
+{
+  const Index h0 = static_cast<Index>(tri.size());
+  // a range per thread (at most 8: each reads all corners), one more per 2^15 corners
+  const std::size_t ranges = (std::min)({std::size_t(available_threads()), std::size_t(8), std::size_t(h0 >> 15) + 1});
+  auto for_ranges = [&](const auto& f) {
+    parallel_for_blocks(ranges, [&](std::size_t first, std::size_t last) {
+      for(std::size_t r = first; r < last; ++r)
+        f(static_cast<Index>(n * r / ranges), static_cast<Index>(n * (r + 1) / ranges - n * r / ranges));
+    }, 1);
+  };
+  if(!counted)
+    count_face_halfedges_by_source(n, tri, offsets, ranges, for_ranges);
+  CGAL_precondition(offsets.size() == n + 1 && offsets[0] == 0);
   for(std::size_t i = 0; i < n; ++i)
     offsets[i + 1] += offsets[i] + (room ? (*room)[i] : Index(0));
   out.resize(offsets[n]);
@@ -236,47 +255,53 @@ public:
     m_sorted = std::vector<std::pair<Index, Index> >();
     const Index h0_before = static_cast<Index>(3 * nf_before);
     std::atomic<bool> failed(false);
-    parallel_for_blocks(nf_before, [&](std::size_t first, std::size_t last) {
-      // raw pointers: the writes to twin would otherwise make the compiler reload every array
-      const Index* const after = c.face_after.data();
-      const Index* const twin_before = before.twin.data();
-      Index* const twins = twin.data();
-      CGAL_assertion_code(const Index* const faces = tri.data();)
-      bool bad = false;
-      for(std::size_t f = first; f < last; ++f)
-      {
-        const Index af = after[f];
-        if(Collapsed_faces::is_removed(af))
-          continue;
-        for(Index corner = 0; corner < 3; ++corner)
+    // the rows' lengths are counted beside the twins (from the face array only): the count
+    // does not gain from threads (see list_face_halfedges_by_source()). Its array is allocated
+    // here, in this thread (see run_beside()).
+    out_offsets.reserve(n + 1);
+    run_beside([&] {
+      parallel_for_blocks(nf_before, [&](std::size_t first, std::size_t last) {
+        // raw pointers: the writes to twin would otherwise make the compiler reload every array
+        const Index* const after = c.face_after.data();
+        const Index* const twin_before = before.twin.data();
+        Index* const twins = twin.data();
+        CGAL_assertion_code(const Index* const faces = tri.data();)
+        bool bad = false;
+        for(std::size_t f = first; f < last; ++f)
         {
-          // across a removed face (o, e, x), the twin of its third edge. It is never entered
-          // through its collapsed edge o e (no face holds two odd vertices), and the twin of
-          // its third edge lies in a kept face or on the border: beyond e x, a face (x, e, o')
-          // removed by o' -> x would cross o -> e, by o' -> e share its target, and o' = x
-          // would neighbour o; beyond x o, a removed face holds o and e, the other face on o e
-          // with the same apex x, which the link condition refuses
-          Index t = twin_before[3 * f + corner];
-          Index at = t < h0_before ? after[t / 3] : invalid_index;
-          if(t < h0_before && Collapsed_faces::is_removed(at))
+          const Index af = after[f];
+          if(Collapsed_faces::is_removed(af))
+            continue;
+          for(Index corner = 0; corner < 3; ++corner)
           {
-            const Index r = t / 3, collapsed = Collapsed_faces::collapsed_corner(at), entered = t % 3;
-            t = entered == collapsed ? h0_before : twin_before[3 * r + (3 - entered - collapsed)];
-            at = t < h0_before ? after[t / 3] : invalid_index;
-            if(entered == collapsed || (t < h0_before && Collapsed_faces::is_removed(at)))
+            // across a removed face (o, e, x), the twin of its third edge. It is never entered
+            // through its collapsed edge o e (no face holds two odd vertices), and the twin of
+            // its third edge lies in a kept face or on the border: beyond e x, a face (x, e, o')
+            // removed by o' -> x would cross o -> e, by o' -> e share its target, and o' = x
+            // would neighbour o; beyond x o, a removed face holds o and e, the other face on o e
+            // with the same apex x, which the link condition refuses
+            Index t = twin_before[3 * f + corner];
+            Index at = t < h0_before ? after[t / 3] : invalid_index;
+            if(t < h0_before && Collapsed_faces::is_removed(at))
             {
-              bad = true;                                  // (the whole is built again below)
-              t = h0_before;
+              const Index r = t / 3, collapsed = Collapsed_faces::collapsed_corner(at), entered = t % 3;
+              t = entered == collapsed ? h0_before : twin_before[3 * r + (3 - entered - collapsed)];
+              at = t < h0_before ? after[t / 3] : invalid_index;
+              if(entered == collapsed || (t < h0_before && Collapsed_faces::is_removed(at)))
+              {
+                bad = true;                                  // (the whole is built again below)
+                t = h0_before;
+              }
             }
+            const Index g = 3 * af + corner, into = t < h0_before ? 3 * at + t % 3 : invalid_index;
+            CGAL_assertion(into == invalid_index || (faces[into] == faces[next_in_face(g)] && faces[next_in_face(into)] == faces[g]));
+            twins[g] = into;
           }
-          const Index g = 3 * af + corner, into = t < h0_before ? 3 * at + t % 3 : invalid_index;
-          CGAL_assertion(into == invalid_index || (faces[into] == faces[next_in_face(g)] && faces[next_in_face(into)] == faces[g]));
-          twins[g] = into;
         }
-      }
-      if(bad)
-        failed.store(true, std::memory_order_relaxed);
-    }, 4096);
+        if(bad)
+          failed.store(true, std::memory_order_relaxed);
+      }, 4096);
+    }, [&] { count_face_halfedges_by_source(n, tri, out_offsets); });
     // freed before the rows are listed: the memory of this build peaks no higher than build()'s
     before = Triangle_halfedges();
     c = Collapsed_faces();
@@ -299,7 +324,7 @@ public:
         ++slot[tri[next_in_face(h)]];                // the border halfedge leaves the target of its twin
     }
     list_face_halfedges_by_source(n, tri, with_apexes, out_offsets, out, out_target, out_apex,
-                                  border_twins.empty() ? nullptr : &slot);
+                                  border_twins.empty() ? nullptr : &slot, true);
     if(with_ends)
       set_ends(tri, border_twins.size());
     else
