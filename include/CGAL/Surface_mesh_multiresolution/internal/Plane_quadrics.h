@@ -227,7 +227,6 @@ public:
 private:
   const double* point(Index v) const { return m_xyz + 3 * std::size_t(v); }
 
-
   // m_own[v] = Q_v(p_v) for every row v, once per level (read by cost())
   void evaluate_own_errors()
   {

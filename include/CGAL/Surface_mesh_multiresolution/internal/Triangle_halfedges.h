@@ -26,18 +26,9 @@ namespace CGAL {
 namespace Surface_mesh_multiresolution {
 namespace internal {
 
-// The face halfedges of a triangle array (halfedge 3f+k from corner k to corner k+1 of face
-// f) listed by source in CSR, by a counting sort, so in face order: the corners around every
-// vertex, with the vertex after each corner in its face (out_target) and, `with_apexes`, the
-// vertex before it (out_apex). A vertex's row is out[offsets[v]] .. out[offsets[v + 1] - 1].
-// In parallel over ranges of source vertices: each range's task reads the whole face array
-// (a stream) and counts, then writes, only the corners of its sources, in face order, so the
-// lists are those of the sequential sort for any number of tasks (no atomics; with one
-// histogram per task the memory would grow with the tasks times the vertices). `room`, when
-// given (n entries), leaves room[v] places at the end of v's row, not written here.
-// `counted`: offsets already holds the counts of count_face_halfedges_by_source() (which a
-// caller may run beside other work: its ranges all read every corner, so that on two threads
-// it took as long as on one).
+// The counting pass of list_face_halfedges_by_source(): offsets[v + 1] = the number of
+// corners of vertex v in `tri` (offsets[0] = 0), each of `ranges` ranges of vertices counted
+// by a call of for_ranges()' function, which reads every corner.
 template <typename ForRanges>
 void count_face_halfedges_by_source(std::size_t n, const std::vector<Index>& tri, std::vector<Index>& offsets,
                                     std::size_t ranges, const ForRanges& for_ranges)
@@ -45,7 +36,7 @@ void count_face_halfedges_by_source(std::size_t n, const std::vector<Index>& tri
   const Index h0 = static_cast<Index>(tri.size());
   offsets.assign(n + 1, 0);
   for_ranges([&](Index lo, Index span) {
-    Index* const count = offsets.data() + 1;               // (raw pointers: see scatter below)
+    Index* const count = offsets.data() + 1;               // (raw pointers: see the scatter in list_face_halfedges_by_source())
     const Index* const corners = tri.data();
     if(ranges == 1)                                        // every source in range: no test per corner
       for(Index h = 0; h < h0; ++h)
@@ -57,12 +48,23 @@ void count_face_halfedges_by_source(std::size_t n, const std::vector<Index>& tri
   });
 }
 
-// offsets[v + 1]: the number of corners of vertex v in `tri`, offsets[0] = 0 (in this thread)
+// The same count in this thread, one range: a caller may run it beside other work (its
+// ranges all read every corner, so that on two threads the count took as long as on one).
 inline void count_face_halfedges_by_source(std::size_t n, const std::vector<Index>& tri, std::vector<Index>& offsets)
 {
   count_face_halfedges_by_source(n, tri, offsets, 1, [n](const auto& f) { f(Index(0), static_cast<Index>(n)); });
 }
 
+// The face halfedges of a triangle array (halfedge 3f+k from corner k to corner k+1 of face
+// f) listed by source in CSR, by a counting sort, so in face order: the corners around every
+// vertex, with the vertex after each corner in its face (out_target) and, `with_apexes`, the
+// vertex before it (out_apex). A vertex's row is out[offsets[v]] .. out[offsets[v + 1] - 1].
+// In parallel over ranges of source vertices: each range's task reads the whole face array
+// (a stream) and counts, then writes, only the corners of its sources, in face order, so the
+// lists are those of the sequential sort for any number of tasks (no atomics; with one
+// histogram per task the memory would grow with the tasks times the vertices). `room`, when
+// given (n entries), leaves room[v] places at the end of v's row, not written here.
+// `counted`: offsets already holds the counts (count_face_halfedges_by_source()).
 inline void list_face_halfedges_by_source(std::size_t n, const std::vector<Index>& tri, bool with_apexes,
                                           std::vector<Index>& offsets, Index_array& out,
                                           Index_array& out_target, Index_array& out_apex,
