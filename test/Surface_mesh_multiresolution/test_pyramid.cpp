@@ -2120,6 +2120,24 @@ TEST_CASE("the corners listed by source in parallel ranges are those of the sequ
     CHECK(t2 == target);
     CHECK(a2.empty());
   }
+  // counted first on their own (as build_after_collapses() counts them beside its twins): each
+  // vertex's number of corners, then the same lists from those counts
+  {
+    std::vector<Index> counts;
+    SMR::internal::count_face_halfedges_by_source(n, tri, counts);
+    REQUIRE(counts.size() == n + 1);
+    CHECK(counts[0] == 0);
+    std::vector<Index> corners_of(n, 0);                     // the reference: one count per corner
+    for(Index v : tri)
+      ++corners_of[v];
+    CHECK(std::equal(corners_of.begin(), corners_of.end(), counts.begin() + 1));
+    SMR::internal::Index_array out2, t2, a2;
+    SMR::internal::list_face_halfedges_by_source(n, tri, true, counts, out2, t2, a2, nullptr, true);
+    CHECK(counts == offsets);
+    CHECK(out2 == out);
+    CHECK(t2 == target);
+    CHECK(a2 == apex);
+  }
 #ifdef CGAL_LINKED_WITH_TBB
   for(int threads : {1, 3, 8})   // other numbers of ranges (one: the single-range case): the same lists
     for(bool apexes : {true, false})
