@@ -1278,6 +1278,93 @@ TEST_CASE("the quadrics of the next level are those of the kept rows plus their 
   CHECK(wrong_costs == 0);
 }
 
+TEST_CASE("the front computed under a sampled limit is a prefix of the full order of the candidates and gives their ends", "[pyramid][cost]")
+{
+  typedef SMR::internal::Index Index;
+  CGAL::Random rng(12);
+  // 40,962 and 10,201 vertices: enough candidates to be sampled (the grid with its border)
+  std::vector<Mesh> meshes{smr_test::icosphere<Mesh>(6), smr_test::planar_grid<Mesh>(100, 0.3)};
+  for(Mesh& m : meshes)
+  {
+    for(auto v : vertices(m))
+      m.point(v) = m.point(v) + Vector_3(rng.get_double(-.01, .01), rng.get_double(-.01, .01), rng.get_double(-.01, .01));
+    const Input_quadrics in(m);
+    const SMR::internal::Triangle_halfedges& th = in.th;
+    REQUIRE(th.number_of_halfedges() >= (std::size_t(1) << 15));
+    struct Ring_cost
+    {
+      SMR::internal::Optional<double> operator()(Index o, Index e) const { return q.cost(o, e); }
+      SMR::internal::Plane_quadrics::Costs_from costs_from(Index o) const { return q.costs_from(o); }
+      const SMR::internal::Plane_quadrics& q;
+    };
+    const Ring_cost cost{in.quadrics};
+    for(const std::size_t wanted : {std::size_t(th.n), std::size_t(th.n / 8)})
+    {
+      std::vector<unsigned char> on_border;
+      SMR::internal::Candidate_key key(0);
+      std::size_t total = 0;
+      std::uint64_t limit = 0;
+      bool as_ends = true;
+      const SMR::internal::Key_array ends = SMR::internal::sorted_candidates(th, cost, on_border, key, wanted, total, limit, nullptr, &as_ends);
+      CHECK(as_ends);                                        // the sampled front held the wanted candidates
+      bool as_keys = false;
+      std::size_t total2 = 0;
+      std::uint64_t limit2 = 0;
+      const SMR::internal::Key_array front = SMR::internal::sorted_candidates(th, cost, on_border, key, wanted, total2, limit2, nullptr, &as_keys);
+      CHECK(!as_keys);
+      CHECK(total2 == total);
+      CHECK(limit2 == limit);
+      REQUIRE(front.size() == ends.size());
+      REQUIRE(front.size() >= wanted);
+      // expected: every candidate's key (candidate_keys()), the refused ones out, sorted whole
+      std::vector<std::uint32_t> low(th.number_of_halfedges());
+      SMR::internal::Key_array all = SMR::internal::candidate_keys(th, cost, on_border, key, low.data());
+      SMR::internal::Low_bits all_low(low.begin(), low.end());
+      SMR::internal::keep_keys(all, &all_low, [](std::uint64_t x) { return x != SMR::internal::refused_candidate; });
+      CHECK(all.size() == total);
+      SMR::internal::sort_front(all, all_low, key);
+      REQUIRE(all.size() >= front.size());
+      std::size_t wrong_keys = 0, wrong_ends = 0, over_limit = 0;
+      for(std::size_t i = 0; i < front.size(); ++i)
+      {
+        wrong_keys += front[i] == all[i] ? 0 : 1;
+        const Index h = key.halfedge(all[i]);
+        wrong_ends += SMR::internal::source_of_ends(ends[i]) == th.source[h] && SMR::internal::target_of_ends(ends[i]) == th.target[h] ? 0 : 1;
+        over_limit += key.leading_bits(front[i]) <= limit ? 0 : 1;
+      }
+      CHECK(wrong_keys == 0);
+      CHECK(wrong_ends == 0);
+      CHECK(over_limit == 0);
+      if(front.size() < all.size())                          // a true prefix: what follows lies over the limit
+        CHECK(key.leading_bits(all[front.size()]) > limit);
+      // the rest, sorted apart, completes the order
+      SMR::internal::Key_array joined = front;
+      SMR::internal::sort_candidate_rest(th, cost, on_border, key, limit, joined);
+      REQUIRE(joined.size() == all.size());
+      std::size_t wrong_order = 0;
+      for(std::size_t i = 0; i < all.size(); ++i)
+        wrong_order += joined[i] == all[i] ? 0 : 1;
+      CHECK(wrong_order == 0);
+      // a limit under the wanted rank: the front falls short, which sorted_candidates() then
+      // selects exactly (as it does where no sample is taken)
+      SMR::internal::Key_array short_front;
+      SMR::internal::Low_bits short_low;
+      SMR::internal::Index_array short_halfedge;
+      std::size_t short_total = 0;
+      const std::uint64_t below = key.leading_bits(all[wanted / 2]);
+      CHECK(SMR::internal::candidate_front(th, cost, on_border, key, below, wanted, short_front, short_low, short_halfedge, nullptr,
+                                           short_total) < wanted);
+      CHECK(short_total == total);
+    }
+  }
+  // too few candidates to sample: no limit, the exact selection
+  const Input_quadrics small(smr_test::icosphere<Mesh>(3));
+  std::vector<unsigned char> on_border(small.th.n, 0);
+  CHECK(SMR::internal::sampled_candidate_limit(small.th, [&](Index o, Index e) { return small.quadrics.cost(o, e); }, on_border,
+                                               SMR::internal::Candidate_key(small.th.number_of_halfedges()), small.th.n)
+        == ~std::uint64_t(0));
+}
+
 namespace {
 // the Garland-Heckbert plane policies under another type: decompose() then drives them
 // through SMS edge profiles on a working halfedge mesh instead of its index-based quadrics

@@ -166,50 +166,55 @@ public:
   }
 
   // The quadrics of the next level M_{k+1}, after a level's accepted collapses ({o, e} each),
-  // in one pass over its rows, in parallel: its row j is the row r = even_rows[j] of M_k
-  // (next_row[r] = j for the even rows of M_k), whose quadric is Q_r, or Q_o + Q_r where r is
-  // the target of the accepted collapse o -> r; and Q_r(p_r) is evaluated at once, with p_r
-  // read in M_k's positions (begin_level() keeps it when M_{k+1}'s positions are those values
-  // moved down in place in the same array, as the decomposition moves them). The selection
-  // locks the closed 1-ring of each source, so no target is taken twice nor is any source's.
-  // The memory follows the level's size (a new array of M_{k+1}'s rows).
-  // Why one pass: the sums made in place first read and wrote every target's 80 bytes at a
-  // random place, a gather of the kept rows read them again, and begin_level() read the next
-  // level's quadrics a third time; here the targets are found through an array of a source per
-  // row of M_{k+1} (4 bytes, written at random), and every quadric is read once and written once.
+  // in place: Q_e += Q_o at every target e (in parallel: the selection locks the closed 1-ring
+  // of each source, so no target is taken twice nor is any source's, and no source is
+  // written), then the rows of M_{k+1} moved down, row j of M_{k+1} from the row
+  // r = even_rows[j] >= j of M_k, with Q_r(p_r) evaluated at once, p_r read in M_k's positions
+  // (begin_level() keeps it when M_{k+1}'s positions are those values moved down in place in
+  // the same array, as the decomposition moves them). `next_row` (next_row[r] = j for the even
+  // rows of M_k) is not read here. The pages the arrays no longer use go back (their capacity
+  // stays). Why in place: a new array of M_{k+1}'s rows, written in one pass that read every
+  // target's source through an array of a source per row, was a second copy of the quadrics
+  // at the level's end, 80 bytes per row: the peak of the dragon's decomposition rose by 35 MB
+  // where no other array of the level had freed as much before it, and on the 3.1M-vertex
+  // horse the freed array of the level before (250 MB) stayed kept for reuse (Block_pool)
+  // through the next level's peak.
   template <typename Collapses>
-  void next_level(const Collapses& accepted, const std::vector<Index>& even_rows, const std::vector<Index>& next_row)
+  void next_level(const Collapses& accepted, const std::vector<Index>& even_rows, const std::vector<Index>& /* next_row */)
   {
     const std::size_t n = even_rows.size();
-    Uninitialized_vector<double>().swap(m_own);         // M_k's: not read again
-    Uninitialized_vector<Index> source(n);
-    parallel_for_blocks(n, [&](std::size_t first, std::size_t last) {
-      std::fill(source.data() + first, source.data() + last, invalid_index);
-    });
+    double* const q = m_q.data();
     parallel_for_blocks(accepted.size(), [&](std::size_t first, std::size_t last) {
       for(std::size_t i = first; i < last; ++i)
-        source[next_row[accepted[i].e]] = accepted[i].o;   // distinct targets: each j written once at most
-    });
-    Uninitialized_vector<double> q(size * n), own(n);
-    parallel_for_blocks(n, [&](std::size_t first, std::size_t last) {
-      for(std::size_t j = first; j < last; ++j)
       {
-        const Index r = even_rows[j];
-        double* b = q.data() + size * j;
-        const double* e = quadric(r);
-        if(source[j] == invalid_index)
-          copy_values(e, size, b);
-        else
-        {
-          const double* a = quadric(source[j]);
-          for(std::size_t i = 0; i < size; ++i)
-            b[i] = a[i] + e[i];                             // add_quadric(): Q_o + Q_e
-        }
-        own[j] = evaluate(b, point(r));
+        double* e = q + size * std::size_t(accepted[i].e);
+        const double* o = q + size * std::size_t(accepted[i].o);
+        for(std::size_t c = 0; c < size; ++c)
+          e[c] += o[c];                                     // add_quadric(): Q_o + Q_e
       }
     });
-    m_q.swap(q);
-    m_own.swap(own);
+    // in blocks of rows of M_{k+1}, in parallel waves (move_down_in_waves()): block b writes
+    // rows [b B, (b + 1) B) and reads from row even_rows[b B] on; Q_r(p_r) of M_k is not read
+    // again, so own[j] is written in place too
+    constexpr std::size_t block = 4096;
+    double* const own = m_own.data();
+    const Index* const even = even_rows.data();
+    move_down_in_waves((n + block - 1) / block,
+                       [&](std::size_t b) { return std::size_t(even[b * block]); },
+                       [&](std::size_t b) { return (std::min)(n, (b + 1) * block); },
+                       [&](std::size_t b) {
+                         for(std::size_t j = b * block, end = (std::min)(n, (b + 1) * block); j < end; ++j)
+                         {
+                           const std::size_t r = even[j];
+                           if(r != j)
+                             std::copy(q + size * r, q + size * (r + 1), q + size * j);
+                           own[j] = evaluate(q + size * j, point(static_cast<Index>(r)));
+                         }
+                       });
+    m_q.resize(size * n);
+    m_own.resize(n);
+    release_unused_capacity(m_q);
+    release_unused_capacity(m_own);
     m_own_current = true;
   }
 

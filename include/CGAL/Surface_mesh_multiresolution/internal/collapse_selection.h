@@ -587,6 +587,15 @@ auto costs_from_source(const CostOfRows& cost, Index o, long)
   };
 }
 
+// the cost of the candidate o -> e of halfedge h, o on the border or not (cost_from_o:
+// costs_from_source() of o); NaN, refused, where a border vertex would leave the border
+// (border vertices move along the border only)
+template <typename CostFrom>
+double candidate_cost(const Triangle_halfedges& th, bool border, Index h, Index e, const CostFrom& cost_from_o)
+{
+  return border && !th.is_border_edge(h) ? std::numeric_limits<double>::quiet_NaN() : cost_from_o(e);
+}
+
 // the key of a refused candidate: none (its cost bits would be a NaN's)
 constexpr std::uint64_t refused_candidate = ~std::uint64_t(0);
 
@@ -866,9 +875,7 @@ Key_array candidate_keys(const Triangle_halfedges& th, const CostOfRows& cost,
         if(k + cost_prefetch_distance < end)
           prefetch_cost_operands(cost, out_target[k + cost_prefetch_distance], 0);
         const Index h = out[k];
-        // NaN, refused: border vertices move along the border only
-        const double c = border && !th.is_border_edge(h) ? std::numeric_limits<double>::quiet_NaN()
-                                                         : cost_from_o(out_target[k]);
+        const double c = candidate_cost(th, border, h, out_target[k], cost_from_o);
         if(std::isnan(c))
         {
           keys[k] = refused_candidate;
@@ -890,6 +897,181 @@ Key_array candidate_keys(const Triangle_halfedges& th, const CostOfRows& cost,
   return candidates;
 }
 
+// The rows of a level in fixed blocks (sampled_candidate_limit(), candidate_front()):
+// f(b, first, last) for every block b of rows [first, last), in parallel
+constexpr std::size_t row_block = std::size_t(1) << 12;
+
+template <typename F>
+void for_row_blocks(std::size_t n, const F& f)
+{
+  parallel_for_blocks((n + row_block - 1) / row_block, [&](std::size_t first, std::size_t last) {
+    for(std::size_t b = first; b < last; ++b)
+      f(b, b * row_block, (std::min)(n, (b + 1) * row_block));
+  }, 1);
+}
+
+// A limit on the leading bits of the keys candidate_keys() would compute under which at least
+// `wanted` of them lie, estimated from the keys of a sample of whole rows, or ~0 where there are
+// too few candidates to sample (32,768). The rows sampled are every r-th, r a prime near twice
+// sample_stride() of the candidates (so that the sample holds about as many candidates as
+// sampled_limit()'s); a row's candidates have related costs, so the rank taken is the expected
+// one plus three standard deviations of a binomial count over rows of two candidates (with
+// rows of one, the dragon's front fell short on one level; of six, the fronts were 20 % larger
+// than wanted: more to sort). In parallel over the sampled rows, each writing its keys at its
+// place, found by a prefix sum of their lengths.
+template <typename CostOfRows>
+std::uint64_t sampled_candidate_limit(const Triangle_halfedges& th, const CostOfRows& cost,
+                                      const std::vector<unsigned char>& on_border, const Candidate_key& key, std::size_t wanted)
+{
+  const std::size_t nh = th.number_of_halfedges();
+  if(nh < (std::size_t(1) << 15) || th.n == 0)
+    return ~std::uint64_t(0);
+  const std::size_t stride = sample_stride(nh);
+  const std::size_t r = stride == 17 ? 37 : (stride == 31 ? 61 : (stride == 61 ? 127 : 251));
+  const std::size_t rows = (th.n + r - 1) / r;               // the rows j r
+  std::vector<std::size_t> place(rows + 1, 0);
+  for(std::size_t j = 0; j < rows; ++j)
+    place[j + 1] = place[j] + (th.out_offsets[j * r + 1] - th.out_offsets[j * r]);
+  std::vector<std::uint64_t> sample(place[rows]);
+  parallel_for_blocks(rows, [&](std::size_t first, std::size_t last) {
+    for(std::size_t j = first; j < last; ++j)
+    {
+      const Index o = static_cast<Index>(j * r);
+      const auto cost_from_o = costs_from_source(cost, o, 0);
+      const bool border = on_border[o] != 0;
+      for(Index k = th.out_offsets[o], i = 0; k < th.out_offsets[o + 1]; ++k, ++i)
+      {
+        const double c = candidate_cost(th, border, th.out[k], th.out_target[k], cost_from_o);
+        sample[place[j] + i] = std::isnan(c) ? refused_candidate : key.leading_bits(key(c, th.out[k]));
+      }
+    }
+  }, 64);
+  const double expected = double(wanted) * double(sample.size()) / double(nh);   // the wanted key's rank among the samples
+  sample.erase(std::remove(sample.begin(), sample.end(), refused_candidate), sample.end());
+  const std::size_t rank = static_cast<std::size_t>(expected + 3. * std::sqrt(2. * expected) + 16.);
+  if(rank >= sample.size())
+    return ~std::uint64_t(0);
+  std::nth_element(sample.begin(), sample.begin() + std::ptrdiff_t(rank), sample.end());
+  return sample[rank];
+}
+
+// The front of cheapest_keys() for the keys of candidate_keys() (the keys whose leading bits
+// are at most `limit`, refused ones left out), computed without the keys of the other
+// candidates, ready to be sorted by sort_renamed_front(): each front key names its place in
+// the front instead of its halfedge (sort_front()), `halfedge` the halfedge of each place,
+// `low` the low bits of its cost and, `ends` given, its ends (ends_of_candidate()). `total`:
+// the number of candidates not refused. Returns the size of the front: at least `wanted`
+// unless the limit fell short (sorted_candidates() then selects from all keys; the arrays are
+// then not written). Why: the keys of all the 6 n candidates (8 bytes each, and 4 of low
+// bits) were written, then read twice by cheapest_keys() (its count and its scatter), for a
+// front of about n of them, and candidate_ends() read the ends of the front's halfedges again
+// at random places of the face array; here each block of rows keeps its front in a buffer of
+// its own (joined in block order: deterministic) with the ends, which its rows give.
+template <typename CostOfRows>
+std::size_t candidate_front(const Triangle_halfedges& th, const CostOfRows& cost, const std::vector<unsigned char>& on_border,
+                            const Candidate_key& key, std::uint64_t limit, std::size_t wanted, Key_array& front, Low_bits& low,
+                            Index_array& halfedge, Key_array* ends, std::size_t& total)
+{
+  struct Entry { std::uint64_t key, ends; std::uint32_t low; };
+  const std::size_t blocks = (th.n + row_block - 1) / row_block;
+  const std::size_t nh = th.number_of_halfedges();
+  std::vector<Uninitialized_vector<Entry> > of_block(blocks);
+  std::vector<std::size_t> kept(blocks);
+  for_row_blocks(th.n, [&](std::size_t b, std::size_t first, std::size_t last) {
+    // local copies: see candidate_keys(); the block's front is written through a pointer,
+    // its buffer grown where the estimate of its size falls short
+    const Candidate_key local_key = key;
+    const int shift = local_key.leading_bits_shift();
+    const std::uint64_t lim = limit;
+    const Index* const offsets = th.out_offsets.data();
+    const Index* const out = th.out.data();
+    const Index* const out_target = th.out_target.data();
+    const Index end = offsets[last];
+    Uninitialized_vector<Entry>& entries = of_block[b];
+    entries.resize((std::size_t(end - offsets[first]) * (wanted + wanted / 8)) / (std::max)(nh, std::size_t(1)) + 64);
+    Entry* to = entries.data();
+    Entry* to_end = to + entries.size();
+    std::size_t not_refused = 0;
+    for(std::size_t o = first; o < last; ++o)
+    {
+      const auto cost_from_o = costs_from_source(cost, static_cast<Index>(o), 0);
+      const bool border = on_border[o] != 0;
+      const Index row_begin = offsets[o], row_end = offsets[o + 1];
+      if(std::size_t(to_end - to) < std::size_t(row_end - row_begin))
+      {
+        const std::size_t written = std::size_t(to - entries.data());
+        entries.resize(2 * entries.size() + (row_end - row_begin));
+        to = entries.data() + written;
+        to_end = entries.data() + entries.size();
+      }
+      for(Index k = row_begin; k < row_end; ++k)
+      {
+        if(k + cost_prefetch_distance < end)
+          prefetch_cost_operands(cost, out_target[k + cost_prefetch_distance], 0);
+        const Index h = out[k], e = out_target[k];
+        const double c = candidate_cost(th, border, h, e, cost_from_o);
+        if(std::isnan(c))
+          continue;
+        ++not_refused;
+        const std::uint64_t image = Candidate_key::image(c);
+        const std::uint64_t x = local_key.of_image(image, h);
+        // written in any case, kept when under the limit: the test's outcome is a coin toss
+        // with odds of one in six, which a branch mispredicted
+        *to = Entry{x, ends_of_candidate(static_cast<Index>(o), e), local_key.low_bits_of_image(image)};
+        to += (x >> shift) <= lim;
+      }
+    }
+    entries.resize(std::size_t(to - entries.data()));
+    kept[b] = not_refused;
+  });
+  std::vector<std::size_t> offset(blocks + 1, 0);
+  total = 0;
+  for(std::size_t b = 0; b < blocks; ++b)
+  {
+    offset[b + 1] = offset[b] + of_block[b].size();
+    total += kept[b];
+  }
+  const std::size_t size = offset[blocks];
+  if(size < (std::max)(wanted, std::size_t(1)))
+    return size;
+  front.resize(size);
+  low.resize(size);
+  halfedge.resize(size);
+  if(ends != nullptr)
+    ends->resize(size);
+  parallel_for_blocks(blocks, [&](std::size_t first, std::size_t last) {
+    for(std::size_t b = first; b < last; ++b)
+    {
+      for(std::size_t j = 0, i = offset[b]; j < of_block[b].size(); ++j, ++i)
+      {
+        const Entry& x = of_block[b][j];
+        halfedge[i] = key.halfedge(x.key);
+        front[i] = (key.cost_part(x.key) << key.halfedge_bits()) | i;   // i < size <= the halfedges: it fits
+        low[i] = x.low;
+        if(ends != nullptr)
+          (*ends)[i] = x.ends;
+      }
+      Uninitialized_vector<Entry>().swap(of_block[b]);
+    }
+  }, 1);
+  return size;
+}
+
+// The sort of sort_front() once the keys name their places (`halfedge`: the halfedge of each
+// place); the sorted keys then name their halfedges again or, `ends` given, are replaced by
+// the ends of their places (as candidate_ends() would replace them)
+inline void sort_renamed_front(Key_array& c, const Low_bits& low, const Index_array& halfedge, const Candidate_key& key,
+                               const Key_array* ends = nullptr)
+{
+  const std::size_t n = c.size();
+  sort_candidates(c.data(), n, key, [&](Index i) { return (std::uint64_t(low[i]) << 32) | halfedge[i]; });
+  parallel_for_blocks(n, [&](std::size_t first, std::size_t last) {
+    for(std::size_t i = first; i < last; ++i)
+      c[i] = ends != nullptr ? (*ends)[key.halfedge(c[i])]
+                             : (key.cost_part(c[i]) << key.halfedge_bits()) | halfedge[key.halfedge(c[i])];
+  });
+}
+
 // Sorts keys whose low bits are given, one per key in the same order (sort_candidates()).
 // While sorted, each key names its place in `c` instead of its halfedge, so that the runs of
 // equal cost bits find their low bits and halfedges in two arrays written in order. Why: the
@@ -909,23 +1091,20 @@ inline void sort_front(Key_array& c, const Low_bits& low, const Candidate_key& k
       c[i] = (key.cost_part(c[i]) << key.halfedge_bits()) | i;   // i < n <= the halfedges: it fits
     }
   });
-  sort_candidates(c.data(), n, key, [&](Index i) { return (std::uint64_t(low[i]) << 32) | halfedge[i]; });
-  parallel_for_blocks(n, [&](std::size_t first, std::size_t last) {
-    for(std::size_t i = first; i < last; ++i)
-      c[i] = (key.cost_part(c[i]) << key.halfedge_bits()) | halfedge[key.halfedge(c[i])];
-  });
+  sort_renamed_front(c, low, halfedge, key);
 }
 
 // The cheapest candidate collapses of one level, sorted (at least `wanted` of them, unless there
 // are fewer): increasing cost, ties by halfedge number, so that the order is total and does not
 // depend on threads. `total`: the number of candidates; `limit`: the leading bits of the
 // largest key returned (the rest comes from sort_candidate_rest()). on_border: one flag per
-// row, set here.
+// row, set here. `as_ends`: if given and true, the candidates may come back as their ends
+// (candidate_ends()); it is set to false where they come back as keys.
 template <typename CostOfRows>
 Key_array sorted_candidates(const Triangle_halfedges& th, const CostOfRows& cost,
                             std::vector<unsigned char>& on_border, Candidate_key& key,
                             std::size_t wanted, std::size_t& total, std::uint64_t& limit,
-                            const std::vector<Index>* faces = nullptr)
+                            const std::vector<Index>* faces = nullptr, bool* as_ends = nullptr)
 {
   CGAL_precondition(th.has_ends() || faces != nullptr);   // the ends of a halfedge: listed, or from the faces
   const Index nh = static_cast<Index>(th.number_of_halfedges());
@@ -933,15 +1112,34 @@ Key_array sorted_candidates(const Triangle_halfedges& th, const CostOfRows& cost
   for(Index h = static_cast<Index>(3 * th.nf); h < nh; ++h)   // the border halfedges come last
     on_border[th.source_of(h, faces)] = on_border[th.target_of(h, faces)] = 1;
   key = Candidate_key(nh);
-  Low_bits low(nh), front_low;                              // low: written for every candidate not refused
-  std::size_t refused = 0;
-  Key_array candidates = candidate_keys(th, cost, on_border, key, low.data(), &refused);
   // Only the cheapest `wanted` are sorted (the level considers them first; of about 6 n
   // candidates it takes n), with every candidate that shares their leading cost bits (the
   // exact costs order runs of equal cost bits): a true prefix of the full order; the rest is
   // computed again and sorted if ever needed (sort_candidate_rest(): a few small levels of a
   // decomposition). Dragon: 18 % of a decomposition in the sort before the partial sort; its
-  // std::nth_element then took 10 % on two threads, sequential.
+  // std::nth_element then took 10 % on two threads, sequential. The front is computed under a
+  // sampled limit, the other keys never stored (candidate_front()); where the sample fell
+  // short or could not be taken (few candidates), every key is computed and the front is
+  // selected from them (cheapest_keys()). The front is the same either way.
+  limit = sampled_candidate_limit(th, cost, on_border, key, wanted);
+  if(limit != ~std::uint64_t(0))
+  {
+    Key_array front, ends;
+    Low_bits low;
+    Index_array halfedge;
+    const bool with_ends = as_ends != nullptr && *as_ends;
+    if(candidate_front(th, cost, on_border, key, limit, wanted, front, low, halfedge, with_ends ? &ends : nullptr, total)
+       >= (std::max)(wanted, std::size_t(1)))
+    {
+      sort_renamed_front(front, low, halfedge, key, with_ends ? &ends : nullptr);
+      return front;
+    }
+  }
+  if(as_ends != nullptr)
+    *as_ends = false;
+  Low_bits low(nh), front_low;                              // low: written for every candidate not refused
+  std::size_t refused = 0;
+  Key_array candidates = candidate_keys(th, cost, on_border, key, low.data(), &refused);
   Key_array front = cheapest_keys(candidates, key, refused_candidate, wanted, total, limit, &low, &front_low,
                                   candidates.size() - refused);
   Key_array().swap(candidates);
@@ -995,10 +1193,19 @@ void select_collapses(const Triangle_halfedges& th, const double* xyz, const Cos
 {
   if(source_of_target.size() < th.n)
     source_of_target.resize(th.n);                        // the first level's size: the next levels reuse it
+  // The rounds do more work than the loop (reservations, three passes): on two threads they
+  // took as long as the loop (dragon, level 0: 0.12 s both), on one 40 % longer; they are used
+  // from four threads on, where the loop would be the largest sequential part
+  if(window == 0)
+    window = available_threads() >= 4 ? (std::max)(std::size_t(4096), th.n / 64) : sequential_selection;
+  // the loop reads the candidates' ends (given with the front, else candidate_ends()), the
+  // rounds their halfedges
+  const bool as_ends = window == sequential_selection && !th.repeated_directed_edge;
+  bool given_as_ends = as_ends;
   Candidate_key key(0);
   std::size_t all = 0;
   std::uint64_t limit = 0;
-  Key_array candidates = sorted_candidates(th, cost, on_border, key, th.n, all, limit, faces);
+  Key_array candidates = sorted_candidates(th, cost, on_border, key, th.n, all, limit, faces, &given_as_ends);
   const std::size_t sorted = candidates.size();
   accepted.clear();
   // Only the th.n cheapest candidates (of about 6 th.n) are considered, unless fewer than
@@ -1007,16 +1214,9 @@ void select_collapses(const Triangle_halfedges& th, const double* xyz, const Cos
   // its ends happen to be free. Measured (bench_quality, adaptive meshes at 25 / 5 / 1 %): RMS
   // error 4-11 % lower; 7 more levels on the bunny and the dragon, dragon decomposition +15 %
   // (1.29 -> 1.47-1.53 s, one process; +4 % when first measured).
-  // The rounds do more work than the loop (reservations, three passes): on two threads they
-  // took as long as the loop (dragon, level 0: 0.12 s both), on one 40 % longer; they are used
-  // from four threads on, where the loop would be the largest sequential part
-  if(window == 0)
-    window = available_threads() >= 4 ? (std::max)(std::size_t(4096), th.n / 64) : sequential_selection;
   if(window == sequential_selection)
     locked.assign(th.n, 0);
-  // the loop reads the candidates' ends (candidate_ends()), the rounds their halfedges
-  const bool as_ends = window == sequential_selection && !th.repeated_directed_edge;
-  if(as_ends)
+  if(as_ends && !given_as_ends)
     candidate_ends(th, key, candidates, 0, faces);
   auto sort_rest = [&] {
     const std::size_t first = candidates.size();
