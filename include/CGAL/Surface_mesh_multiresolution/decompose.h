@@ -163,8 +163,9 @@ private:
       // on M_k and its values only (predict_with_rows_once()): they are computed beside the
       // taking of the candidates, which is sequential below four threads (the task's parallel
       // loops go on on both threads once the taking is done), on every level. Allocated here,
-      // in this thread, once the candidates are sorted (in the memory their keys freed:
-      // allocated before them, the levels' page faults doubled)
+      // in this thread, once the candidates are sorted (where the front's arrays were freed;
+      // allocated before the front, the 3.1M-vertex horse's peak rose from 2.46 to 2.51 times
+      // its mesh)
       select_collapses(th, xyz().data(), Cost_of_rows<CostModel>{m_cost}, budget, m_on_border, m_locked,
                        m_source_of_target, m_accepted, 0, [&](const auto& take) {
                          m_builder.allocate_paired_rows(m_scheme);

@@ -161,7 +161,7 @@ public:
     CGAL_precondition(scheme != Relaxation_scheme::SECOND_ORDER_DIFFERENCE);
     halfedges();
     if(scheme != Relaxation_scheme::UNIFORM)
-      m_cotangent.resize(m_triangles->size());   // first: the largest, it takes the block the candidate keys freed
+      m_cotangent.resize(m_triangles->size());   // first: the largest, it takes the largest block freed before it
     corners();
   }
   void fill_paired_rows(Relaxation_scheme scheme, const double* xyz)
