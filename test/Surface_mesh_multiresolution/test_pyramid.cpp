@@ -1298,7 +1298,10 @@ TEST_CASE("the front computed under a sampled limit is a prefix of the full orde
       const SMR::internal::Plane_quadrics& q;
     };
     const Ring_cost cost{in.quadrics};
-    for(const std::size_t wanted : {std::size_t(th.n), std::size_t(th.n / 8)})
+    // as decompose() asks (n), fewer, and half of the candidates: fronts larger than the third
+    // of its rows' candidates that a block's slice holds, so that blocks go on in vectors of
+    // their own
+    for(const std::size_t wanted : {std::size_t(th.n), std::size_t(th.n / 8), th.number_of_halfedges() / 2})
     {
       std::vector<unsigned char> on_border;
       SMR::internal::Candidate_key key(0);
@@ -1350,10 +1353,11 @@ TEST_CASE("the front computed under a sampled limit is a prefix of the full orde
       SMR::internal::Key_array short_front;
       SMR::internal::Low_bits short_low;
       SMR::internal::Index_array short_halfedge;
+      SMR::internal::Uninitialized_vector<SMR::internal::Front_entry> arena;
       std::size_t short_total = 0;
       const std::uint64_t below = key.leading_bits(all[wanted / 2]);
       CHECK(SMR::internal::candidate_front(th, cost, on_border, key, below, wanted, short_front, short_low, short_halfedge, nullptr,
-                                           short_total) < wanted);
+                                           short_total, arena) < wanted);
       CHECK(short_total == total);
     }
   }

@@ -969,19 +969,29 @@ std::uint64_t sampled_candidate_limit(const Triangle_halfedges& th, const CostOf
 // front of about n of them, and candidate_ends() read the ends of the front's halfedges again
 // at random places of the face array; here each block of rows keeps its front in a buffer of
 // its own (joined in block order: deterministic) with the ends, which its rows give.
+// a candidate of the front of candidate_front(): its key, its ends, the low bits of its cost
+struct Front_entry { std::uint64_t key, ends; std::uint32_t low; };
+
 template <typename CostOfRows>
 std::size_t candidate_front(const Triangle_halfedges& th, const CostOfRows& cost, const std::vector<unsigned char>& on_border,
                             const Candidate_key& key, std::uint64_t limit, std::size_t wanted, Key_array& front, Low_bits& low,
-                            Index_array& halfedge, Key_array* ends, std::size_t& total)
+                            Index_array& halfedge, Key_array* ends, std::size_t& total, Uninitialized_vector<Front_entry>& arena)
 {
-  struct Entry { std::uint64_t key, ends; std::uint32_t low; };
+  typedef Front_entry Entry;
   const std::size_t blocks = (th.n + row_block - 1) / row_block;
-  const std::size_t nh = th.number_of_halfedges();
-  std::vector<Uninitialized_vector<Entry> > of_block(blocks);
-  std::vector<std::size_t> kept(blocks);
+  // Each block writes its front into its slice of `arena`, a third of an entry per candidate
+  // (8 bytes: the size of the level's cotangents, which the caller allocates once it has freed
+  // the arena; with a buffer per block, from the heap, the dragon's peak rose by 12 MB, the
+  // cotangents touching fresh pages); a block whose front outgrows its slice goes on in a vector
+  // of its own (`spilled`).
+  std::vector<std::size_t> slice(blocks + 1, 0);
+  for(std::size_t b = 0; b < blocks; ++b)
+    slice[b + 1] = slice[b] + (th.out_offsets[(std::min)(th.n, (b + 1) * row_block)] - th.out_offsets[b * row_block]) / 3 + 64;
+  arena.resize(slice[blocks]);
+  std::vector<Uninitialized_vector<Entry> > spilled(blocks);
+  std::vector<std::size_t> count(blocks), kept(blocks);
   for_row_blocks(th.n, [&](std::size_t b, std::size_t first, std::size_t last) {
-    // local copies: see candidate_keys(); the block's front is written through a pointer,
-    // its buffer grown where the estimate of its size falls short
+    // local copies: see candidate_keys(); the block's front is written through a pointer
     const Candidate_key local_key = key;
     const int shift = local_key.leading_bits_shift();
     const std::uint64_t lim = limit;
@@ -989,10 +999,10 @@ std::size_t candidate_front(const Triangle_halfedges& th, const CostOfRows& cost
     const Index* const out = th.out.data();
     const Index* const out_target = th.out_target.data();
     const Index end = offsets[last];
-    Uninitialized_vector<Entry>& entries = of_block[b];
-    entries.resize((std::size_t(end - offsets[first]) * (wanted + wanted / 8)) / (std::max)(nh, std::size_t(1)) + 64);
-    Entry* to = entries.data();
-    Entry* to_end = to + entries.size();
+    Entry* const begin = arena.data() + slice[b];
+    Entry* to = begin;
+    Entry* to_end = arena.data() + slice[b + 1];
+    Uninitialized_vector<Entry>& spill = spilled[b];
     std::size_t not_refused = 0;
     for(std::size_t o = first; o < last; ++o)
     {
@@ -1001,10 +1011,16 @@ std::size_t candidate_front(const Triangle_halfedges& th, const CostOfRows& cost
       const Index row_begin = offsets[o], row_end = offsets[o + 1];
       if(std::size_t(to_end - to) < std::size_t(row_end - row_begin))
       {
-        const std::size_t written = std::size_t(to - entries.data());
-        entries.resize(2 * entries.size() + (row_end - row_begin));
-        to = entries.data() + written;
-        to_end = entries.data() + entries.size();
+        const std::size_t written = std::size_t(to - (spill.empty() ? begin : spill.data()));
+        if(spill.empty())
+        {
+          spill.resize(2 * written + (row_end - row_begin));
+          std::copy(begin, to, spill.data());
+        }
+        else
+          spill.resize(2 * spill.size() + (row_end - row_begin));
+        to = spill.data() + written;
+        to_end = spill.data() + spill.size();
       }
       for(Index k = row_begin; k < row_end; ++k)
       {
@@ -1023,14 +1039,14 @@ std::size_t candidate_front(const Triangle_halfedges& th, const CostOfRows& cost
         to += (x >> shift) <= lim;
       }
     }
-    entries.resize(std::size_t(to - entries.data()));
+    count[b] = std::size_t(to - (spill.empty() ? begin : spill.data()));
     kept[b] = not_refused;
   });
   std::vector<std::size_t> offset(blocks + 1, 0);
   total = 0;
   for(std::size_t b = 0; b < blocks; ++b)
   {
-    offset[b + 1] = offset[b] + of_block[b].size();
+    offset[b + 1] = offset[b] + count[b];
     total += kept[b];
   }
   const std::size_t size = offset[blocks];
@@ -1044,16 +1060,17 @@ std::size_t candidate_front(const Triangle_halfedges& th, const CostOfRows& cost
   parallel_for_blocks(blocks, [&](std::size_t first, std::size_t last) {
     for(std::size_t b = first; b < last; ++b)
     {
-      for(std::size_t j = 0, i = offset[b]; j < of_block[b].size(); ++j, ++i)
+      const Entry* const entries = spilled[b].empty() ? arena.data() + slice[b] : spilled[b].data();
+      for(std::size_t j = 0, i = offset[b]; j < count[b]; ++j, ++i)
       {
-        const Entry& x = of_block[b][j];
+        const Entry& x = entries[j];
         halfedge[i] = key.halfedge(x.key);
         front[i] = (key.cost_part(x.key) << key.halfedge_bits()) | i;   // i < size <= the halfedges: it fits
         low[i] = x.low;
         if(ends != nullptr)
           (*ends)[i] = x.ends;
       }
-      Uninitialized_vector<Entry>().swap(of_block[b]);
+      Uninitialized_vector<Entry>().swap(spilled[b]);
     }
   }, 1);
   return size;
@@ -1126,11 +1143,12 @@ Key_array sorted_candidates(const Triangle_halfedges& th, const CostOfRows& cost
   limit = sampled_candidate_limit(th, cost, on_border, key, wanted);
   if(limit != ~std::uint64_t(0))
   {
+    Uninitialized_vector<Front_entry> arena;                // freed last, with the front sorted (candidate_front())
     Key_array front, ends;
     Low_bits low;
     Index_array halfedge;
     const bool with_ends = as_ends != nullptr && *as_ends;
-    if(candidate_front(th, cost, on_border, key, limit, wanted, front, low, halfedge, with_ends ? &ends : nullptr, total)
+    if(candidate_front(th, cost, on_border, key, limit, wanted, front, low, halfedge, with_ends ? &ends : nullptr, total, arena)
        >= (std::max)(wanted, std::size_t(1)))
     {
       sort_renamed_front(front, low, halfedge, key, with_ends ? &ends : nullptr);
