@@ -663,10 +663,7 @@ constexpr std::size_t front_block = std::size_t(1) << 18;
 template <typename F>
 void for_key_blocks(std::size_t n, const F& f)
 {
-  parallel_for_blocks((n + front_block - 1) / front_block, [&](std::size_t first, std::size_t last) {
-    for(std::size_t b = first; b < last; ++b)
-      f(b, b * front_block, (std::min)(n, (b + 1) * front_block));
-  }, 1);
+  for_fixed_blocks(n, front_block, f);
 }
 
 // The radix select of cheapest_keys(): the leading bits of the rank-th cheapest key of `c`
@@ -904,10 +901,7 @@ constexpr std::size_t row_block = std::size_t(1) << 12;
 template <typename F>
 void for_row_blocks(std::size_t n, const F& f)
 {
-  parallel_for_blocks((n + row_block - 1) / row_block, [&](std::size_t first, std::size_t last) {
-    for(std::size_t b = first; b < last; ++b)
-      f(b, b * row_block, (std::min)(n, (b + 1) * row_block));
-  }, 1);
+  for_fixed_blocks(n, row_block, f);
 }
 
 // A limit on the leading bits of the keys candidate_keys() would compute under which at least

@@ -67,6 +67,18 @@ void parallel_for_blocks(std::size_t n, const F& f, std::size_t grain = 8192)
     f(std::size_t(0), n);
 }
 
+// Calls f(b, first, last) for every fixed block b of `block` positions of [0, n) ([first,
+// last) its positions), blocks in parallel: unlike parallel_for_blocks()' ranges, the blocks do
+// not depend on the number of threads, so per-block results joined in block order do not either.
+template <typename F>
+void for_fixed_blocks(std::size_t n, std::size_t block, const F& f)
+{
+  parallel_for_blocks((n + block - 1) / block, [&](std::size_t first, std::size_t last) {
+    for(std::size_t b = first; b < last; ++b)
+      f(b, b * block, (std::min)(n, (b + 1) * block));
+  }, 1);
+}
+
 // The first position p < n where fails(p) holds, or n: blocks in parallel, each stopping at
 // its first failure or where an earlier one was already found (a shared atomic minimum), so
 // the answer is the sequential scan's for any number of threads.
